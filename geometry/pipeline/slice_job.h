@@ -1,0 +1,39 @@
+// One `tranche slice` run: the options the command line gives, and the function that runs the
+// whole pipeline (load → plan → slice → resolve → relate → decompose → toolpaths → G-code).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runtime/base/report.h"
+#include "runtime/base/result.h"
+
+namespace tranche::pipeline {
+
+enum class OverlapMode { Additive, Boolean, Subtractive };
+
+struct SliceOptions {
+  std::string model;                        // STL or SVG path
+  std::string output_gcode;                 // -o; empty = no G-code
+  std::vector<std::string> rules;           // --rules, in cascade order
+  std::vector<std::pair<std::string, std::string>> sets;  // --set key=value, in order
+  std::string export_svg;                   // --export-svg
+  std::string export_layers;                // --export-layers (JSON)
+  OverlapMode overlap = OverlapMode::Additive;
+  std::string fill_angle_script;            // --fill-angle-script (Python)
+  bool strict = false;                      // --strict: coherence warnings become errors
+  bool quiet = false;                       // --quiet: no progress on stderr
+};
+
+// What a finished run reports to the user.
+struct SliceSummary {
+  int layers = 0;
+  size_t triangles = 0;
+  std::vector<std::string> written;  // output files, in the order written
+};
+
+Result<SliceSummary> run_slice(const SliceOptions& options, Report& report);
+
+}  // namespace tranche::pipeline

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target in BUILD/fuzz for SECONDS each, starting from its seed corpus
+# (fuzz/corpus/<name>/). Fails if a target crashes, leaks, times out on one input or runs out of memory.
+set -euo pipefail
+build=${1:-build-fuzz}
+seconds=${2:-30}
+root=$(cd "$(dirname "$0")/.." && pwd)
+status=0
+shopt -s nullglob
+for bin in "$build"/fuzz/fuzz_*; do
+  [[ -x "$bin" && -f "$bin" ]] || continue
+  name=$(basename "$bin"); name=${name#fuzz_}
+  work=$(mktemp -d)
+  seeds="$root/fuzz/corpus/$name"
+  mkdir -p "$work/corpus"
+  [[ -d "$seeds" ]] && cp -r "$seeds"/. "$work/corpus/" 2>/dev/null || true
+  echo "fuzz: $name for ${seconds}s"
+  if ! (cd "$work" && "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+        -print_final_stats=0 corpus >"$work/log" 2>&1); then
+    echo "fuzz: $name FAILED; last lines of its log:"; tail -40 "$work/log"
+    mkdir -p "$root/$build/fuzz-failures"; cp "$work"/crash-* "$work"/timeout-* "$work"/oom-* "$work"/leak-* \
+      "$root/$build/fuzz-failures/" 2>/dev/null || true
+    status=1
+  else
+    grep -E '^#[0-9]+.*DONE' "$work/log" | tail -1 || true
+  fi
+  rm -rf "$work"
+done
+exit $status
