@@ -1,0 +1,272 @@
+#include "geometry/mesh/stl.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+#include "geometry/mesh/stl_parse.h"
+#include "geometry/mesh/weld.h"
+
+namespace tranche::geo {
+namespace stl {
+
+std::string at_line(const std::string& file, uint64_t line) { return fmt::format("{}:{}", file, line); }
+std::string at_triangle(const std::string& file, uint64_t index0) {
+  return fmt::format("{}, triangle {}", file, index0 + 1);
+}
+
+}  // namespace stl
+
+namespace {
+
+constexpr uint64_t kPipeLimit = uint64_t{1} << 30;  // bytes read from a pipe or device before giving up
+
+std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+struct Bytes {
+  std::unique_ptr<char[]> data;
+  size_t size = 0;
+  std::string_view view() const { return {data.get(), size}; }
+};
+
+// One read of the whole file (a pipe is read in chunks, up to kPipeLimit).
+Result<Bytes> read_all(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    return Error{path, fmt::format("cannot open the model: {}{}", errno_text(err),
+                                   err == ENOENT ? " — check the path" : "")};
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return Error{path, "cannot read the model: " + errno_text(errno)};
+  if (S_ISDIR(st.st_mode)) return Error{path, "is a directory, not an STL file"};
+  const bool regular = S_ISREG(st.st_mode);
+  Bytes b;
+  size_t capacity = regular ? static_cast<size_t>(st.st_size) : size_t{1} << 20;
+  b.data.reset(new char[std::max<size_t>(capacity, 1)]);
+  for (;;) {
+    if (b.size == capacity) {
+      if (regular) break;  // a file that grows while we read it is taken at its size when opened
+      if (capacity >= kPipeLimit) {
+        return Error{path, fmt::format("more than {} MiB from a pipe or device; save the model to a file",
+                                       kPipeLimit >> 20)};
+      }
+      auto bigger = std::unique_ptr<char[]>(new char[capacity * 2]);
+      std::memcpy(bigger.get(), b.data.get(), b.size);
+      b.data = std::move(bigger);
+      capacity *= 2;
+    }
+    const ssize_t n = ::read(fd, b.data.get() + b.size, capacity - b.size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return Error{path, "cannot read the model: " + errno_text(errno)};
+    }
+    if (n == 0) break;
+    b.size += static_cast<size_t>(n);
+  }
+  return b;
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+// The first word is `solid` (any case), after an optional byte order mark and whitespace.
+bool starts_with_solid_word(std::string_view s) {
+  if (s.starts_with("\xEF\xBB\xBF")) s.remove_prefix(3);
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  if (s.size() < 5) return false;
+  for (size_t i = 0; i < 5; ++i) {
+    if ((s[i] | 0x20) != "solid"[i]) return false;
+  }
+  return s.size() == 5 || is_space(s[5]);
+}
+
+// Text files have no NUL and few control bytes; binary STL data (floats, a padded header) has NULs.
+bool looks_like_text(std::string_view s) {
+  s = s.substr(0, 1024);
+  for (char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == 0 || (c < 0x20 && !is_space(ch))) return false;
+  }
+  return true;
+}
+
+std::string excerpt(std::string_view s) {
+  std::string out;
+  for (size_t i = 0; i < s.size() && out.size() < 24; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c == '\n' || c == '\r') break;
+    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  }
+  return out;
+}
+
+// Normals are only checked, never used: the corner order defines the outside.
+bool normal_disagrees(const stl::Facet& f) {
+  const double n[3] = {f.normal[0], f.normal[1], f.normal[2]};
+  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (nn == 0 || !std::isfinite(nn)) return false;
+  const double u[3] = {double{f.v[3]} - f.v[0], double{f.v[4]} - f.v[1], double{f.v[5]} - f.v[2]};
+  const double w[3] = {double{f.v[6]} - f.v[0], double{f.v[7]} - f.v[1], double{f.v[8]} - f.v[2]};
+  const double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  const double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+  if (cc == 0 || !std::isfinite(cc)) return false;
+  // More than 60° apart: beyond any exporter's rounding, so the normal or the winding is wrong.
+  return n[0] * c[0] + n[1] * c[1] + n[2] * c[2] < 0.5 * std::sqrt(nn * cc);
+}
+
+Result<Mesh> weld(stl::RawStl raw, const std::string& file, Report& report) {
+  const auto where = [&](uint64_t i) {
+    return raw.lines.empty() ? stl::at_triangle(file, i) : stl::at_line(file, raw.lines[i]);
+  };
+  const size_t n = raw.facets.size();
+  Welder welder(n);
+  uint64_t wrong_normals = 0, first_wrong = 0, degenerate = 0, first_degenerate = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const stl::Facet& f = raw.facets[i];
+    if (!welder.add(f.v, f.v + 3, f.v + 6)) {
+      if (degenerate++ == 0) first_degenerate = i;
+    } else if (normal_disagrees(f)) {
+      if (wrong_normals++ == 0) first_wrong = i;
+    }
+  }
+  if (degenerate == n) {
+    return Error{file,
+                 fmt::format("all {} triangles are degenerate (two or three corners at the same point); "
+                             "the model has no surface — check its export settings",
+                             n)};
+  }
+  if (degenerate > 0) {
+    report.warn(
+        "stl-degenerate", where(first_degenerate),
+        fmt::format("dropped {} degenerate triangle{} of {} (two corners at the same point; first here)",
+                    degenerate, degenerate == 1 ? "" : "s", n));
+  }
+  if (wrong_normals > 0) {
+    report.warn(
+        "stl-normal", where(first_wrong),
+        fmt::format("{} of {} facets have a normal that disagrees with their vertex order (first here); "
+                    "the vertex order (counter-clockwise seen from outside) is used — if the print "
+                    "comes out inside out, repair the model's winding",
+                    wrong_normals, n));
+  }
+  Mesh mesh;
+  welder.finish(mesh);
+  mesh.name = raw.name.empty() ? std::filesystem::path(file).stem().string() : std::move(raw.name);
+  return mesh;
+}
+
+void put_u32(char* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+void put_float(char* p, double v) { put_u32(p, std::bit_cast<uint32_t>(static_cast<float>(v))); }
+
+}  // namespace
+
+Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& report) {
+  if (bytes.empty()) {
+    return Error{name,
+                 "the file is empty (0 bytes); export the model again or check that it was copied "
+                 "completely"};
+  }
+  bool binary = false;
+  if (bytes.size() >= 84) {
+    uint32_t count = 0;
+    for (int i = 3; i >= 0; --i) count = count << 8 | static_cast<unsigned char>(bytes[80 + i]);
+    binary = 84 + 50 * uint64_t{count} == bytes.size();
+  }
+  // "solid" with NULs or control bytes is a binary header, unless the file is too short for one.
+  if (!binary && starts_with_solid_word(bytes) && (looks_like_text(bytes) || bytes.size() < 84)) {
+    Result<stl::RawStl> raw = stl::parse_ascii(bytes, name, report);
+    if (!raw) return raw.error();
+    return weld(std::move(raw.value()), name, report);
+  }
+  if (!binary && looks_like_text(bytes)) {
+    return Error{name, fmt::format("not an STL file: it is text but does not start with 'solid' (it starts "
+                                   "with '{}'); export the model as STL",
+                                   excerpt(bytes))};
+  }
+  Result<stl::RawStl> raw = stl::parse_binary(bytes, name, report);
+  if (!raw) return raw.error();
+  return weld(std::move(raw.value()), name, report);
+}
+
+Result<Mesh> load_stl(const std::string& path, Report& report) {
+  Result<Bytes> bytes = read_all(path);
+  if (!bytes) return bytes.error();
+  return parse_stl(bytes->view(), path, report);
+}
+
+Status write_stl_binary(const std::string& path, const Mesh& mesh) {
+  if (mesh.triangles.size() > UINT32_MAX) {
+    return Error{path, fmt::format("{} triangles do not fit a binary STL (at most {})", mesh.triangles.size(),
+                                   UINT32_MAX)};
+  }
+  std::string out(84 + 50 * mesh.triangles.size(), '\0');
+  // Never start the header with "solid": older readers would take the file for ASCII.
+  std::string header = mesh.name;
+  std::string lower = header.substr(0, 5);
+  for (char& ch : lower) ch = static_cast<char>(ch | 0x20);
+  if (lower == "solid") header = "model " + header;
+  std::memcpy(out.data(), header.data(), std::min<size_t>(header.size(), 80));
+  put_u32(out.data() + 80, static_cast<uint32_t>(mesh.triangles.size()));
+  char* p = out.data() + 84;
+  for (size_t i = 0; i < mesh.triangles.size(); ++i, p += 50) {
+    const auto& t = mesh.triangles[i];
+    for (uint32_t id : t) {
+      if (id >= mesh.vertices.size()) {
+        return Error{stl::at_triangle(path, i),
+                     fmt::format("vertex id {} is out of range ({} vertices); nothing was written", id,
+                                 mesh.vertices.size())};
+      }
+    }
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Vec3 u{b.x - a.x, b.y - a.y, b.z - a.z}, w{c.x - a.x, c.y - a.y, c.z - a.z};
+    Vec3 nrm{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+    const double len = std::sqrt(nrm.x * nrm.x + nrm.y * nrm.y + nrm.z * nrm.z);
+    if (len > 0 && std::isfinite(len)) {
+      nrm = {nrm.x / len, nrm.y / len, nrm.z / len};
+    } else {
+      nrm = {};
+    }
+    const double vals[12] = {nrm.x, nrm.y, nrm.z, a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
+    for (int k = 0; k < 12; ++k) put_float(p + 4 * k, vals[k]);
+  }
+  // Write a temporary file beside the target and rename it, so a failure never leaves half a file.
+  std::string tmp = path + ".tmp-XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) return Error{path, "cannot write: " + errno_text(errno)};
+  size_t done = 0;
+  while (done < out.size()) {
+    const ssize_t n = ::write(fd, out.data() + done, out.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      return Error{path, "cannot write: " + errno_text(err)};
+    }
+    done += static_cast<size_t>(n);
+  }
+  ::fchmod(fd, 0644);
+  if (::close(fd) != 0 || ::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    return Error{path, "cannot write: " + errno_text(err)};
+  }
+  return ok_status();
+}
+
+}  // namespace tranche::geo

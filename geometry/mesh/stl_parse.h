@@ -1,0 +1,35 @@
+// Internal to the STL loader: the two format parsers produce raw facets (float corners as stored
+// in the file); stl.cpp checks normals, welds and reports. Not for use outside geometry/mesh.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/base/report.h"
+#include "runtime/base/result.h"
+
+namespace tranche::geo::stl {
+
+struct Facet {
+  float normal[3];  // as stored; all zero when the file gives none
+  float v[9];       // corners a, b, c (x, y, z each), mm, finite
+};
+
+struct RawStl {
+  std::vector<Facet> facets;
+  std::vector<uint32_t> lines;  // ASCII: the line of each facet's `facet` keyword; empty for binary
+  std::string name;             // solid name / header text; empty when there is none
+};
+
+// `file` names the input in messages. Binary needs a size that holds the header's count (extra
+// bytes are a warning); ASCII is a hand-written tokenizer over the buffer, linear in its size.
+Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Report& report);
+Result<RawStl> parse_ascii(std::string_view bytes, const std::string& file, Report& report);
+
+// "model.stl:12" / "model.stl, triangle 40" (triangles are numbered from 1).
+std::string at_line(const std::string& file, uint64_t line);
+std::string at_triangle(const std::string& file, uint64_t index0);
+
+}  // namespace tranche::geo::stl
