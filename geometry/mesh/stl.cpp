@@ -131,15 +131,38 @@ Result<Mesh> weld(stl::RawStl raw, const std::string& file, Report& report) {
   const auto where = [&](uint64_t i) {
     return raw.lines.empty() ? stl::at_triangle(file, i) : stl::at_line(file, raw.lines[i]);
   };
-  const size_t n = raw.facets.size();
+  const size_t n = raw.size();
   Welder welder(n);
+  // Chunks small enough to stay in cache between decoding, checking and welding.
+  constexpr size_t kChunk = 2048;
+  std::vector<float> corners(9 * kChunk);
+  std::vector<uint8_t> dropped(kChunk);
   uint64_t wrong_normals = 0, first_wrong = 0, degenerate = 0, first_degenerate = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const stl::Facet& f = raw.facets[i];
-    if (!welder.add(f.v, f.v + 3, f.v + 6)) {
-      if (degenerate++ == 0) first_degenerate = i;
-    } else if (normal_disagrees(f)) {
-      if (wrong_normals++ == 0) first_wrong = i;
+  stl::Facet decoded;
+  for (size_t base = 0; base < n; base += kChunk) {
+    const size_t m = std::min(kChunk, n - base);
+    for (size_t k = 0; k < m; ++k) {
+      const size_t i = base + k;
+      const stl::Facet* f = &decoded;
+      if (raw.records.empty()) {
+        f = &raw.facets[i];
+      } else {
+        stl::decode_record(raw.records.data() + i * stl::RawStl::kRecordBytes, decoded);
+      }
+      for (int c = 0; c < 9; ++c) {
+        if (!std::isfinite(f->v[c])) {
+          return Error{where(i),
+                       fmt::format("corner {} has a coordinate that is not a finite number ({}); the "
+                                   "file is corrupt — repair or re-export the model",
+                                   c / 3 + 1, f->v[c])};
+        }
+      }
+      if (normal_disagrees(*f) && wrong_normals++ == 0) first_wrong = i;
+      std::memcpy(&corners[9 * k], f->v, sizeof f->v);
+    }
+    welder.add(corners.data(), m, dropped.data());
+    for (size_t k = 0; k < m; ++k) {
+      if (dropped[k] && degenerate++ == 0) first_degenerate = base + k;
     }
   }
   if (degenerate == n) {

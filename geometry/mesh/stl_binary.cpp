@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <bit>
-#include <cmath>
 #include <cstring>
 
 #include "geometry/mesh/stl_parse.h"
@@ -13,7 +12,7 @@ namespace tranche::geo::stl {
 namespace {
 
 constexpr size_t kHeader = 84;
-constexpr size_t kRecord = 50;
+constexpr size_t kRecord = RawStl::kRecordBytes;
 
 uint32_t read_u32(const char* p) {
   const auto* u = reinterpret_cast<const unsigned char*>(p);
@@ -79,31 +78,23 @@ Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Rep
                                    count, Welder::kMaxTriangles)};
   }
   if (needed < size) {
+    const uint64_t more = complete - count;
     report.warn("stl-extra-data", file,
-                fmt::format("{} bytes after the last of the header's {} triangles are ignored (room for {} "
-                            "more); if parts of the model are missing, its triangle count is wrong — "
-                            "re-export it",
-                            size - needed, count, complete - count));
+                fmt::format("{} bytes after the last of the header's {} triangles are ignored{}; if parts of "
+                            "the model are missing, its triangle count is wrong — re-export it",
+                            size - needed, count,
+                            more > 0 ? fmt::format(" (room for {} more)", more) : std::string()));
   }
 
   RawStl raw;
   raw.name = header_name(bytes.substr(0, 80));
-  raw.facets.resize(count);
-  const char* p = bytes.data() + kHeader;
-  for (uint64_t i = 0; i < count; ++i, p += kRecord) {
-    Facet& f = raw.facets[i];
-    read_floats(p, f.normal, 3);
-    read_floats(p + 12, f.v, 9);
-    for (int k = 0; k < 9; ++k) {
-      if (!std::isfinite(f.v[k])) {
-        return Error{at_triangle(file, i),
-                     fmt::format("corner {} has a coordinate that is not a finite number ({}); the file is "
-                                 "corrupt — repair or re-export the model",
-                                 k / 3 + 1, f.v[k])};
-      }
-    }
-  }
+  raw.records = bytes.substr(kHeader, kRecord * count);
   return raw;
+}
+
+void decode_record(const char* record, Facet& out) {
+  read_floats(record, out.normal, 3);
+  read_floats(record + 12, out.v, 9);
 }
 
 }  // namespace tranche::geo::stl

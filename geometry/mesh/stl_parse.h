@@ -14,14 +14,23 @@ namespace tranche::geo::stl {
 
 struct Facet {
   float normal[3];  // as stored; all zero when the file gives none
-  float v[9];       // corners a, b, c (x, y, z each), mm, finite
+  float v[9];       // corners a, b, c (x, y, z each), mm
 };
 
+// Binary input stays in the file's bytes (`records`, 50 bytes per triangle, corners not yet
+// checked for NaN); ASCII input is parsed into `facets`.
 struct RawStl {
+  std::string_view records;
   std::vector<Facet> facets;
   std::vector<uint32_t> lines;  // ASCII: the line of each facet's `facet` keyword; empty for binary
   std::string name;             // solid name / header text; empty when there is none
+
+  size_t size() const { return records.empty() ? facets.size() : records.size() / kRecordBytes; }
+  static constexpr size_t kRecordBytes = 50;
 };
+
+// Facet i of a binary STL record block (normal and corners as stored, little-endian float32).
+void decode_record(const char* record, Facet& out);
 
 // `file` names the input in messages. Binary needs a size that holds the header's count (extra
 // bytes are a warning); ASCII is a hand-written tokenizer over the buffer, linear in its size.

@@ -32,27 +32,42 @@ Welder::Welder(size_t triangles) {
   triangles_.reserve(triangles);
 }
 
-uint32_t Welder::id_of(const float* p) {
-  const std::array<uint32_t, 3> key{bits_of(p[0]), bits_of(p[1]), bits_of(p[2])};
-  for (uint64_t i = hash_of(key) & mask_;; i = (i + 1) & mask_) {
-    const uint32_t id = slots_[i];
-    if (id == kEmpty) {
-      slots_[i] = static_cast<uint32_t>(keys_.size());
-      keys_.push_back(key);
-      return slots_[i];
+void Welder::add(const float* corners, size_t n, uint8_t* dropped) {
+  const size_t m = 3 * n;
+  batch_keys_.resize(m);
+  batch_hashes_.resize(m);
+  batch_ids_.resize(m);
+  for (size_t j = 0; j < m; ++j) {
+    batch_keys_[j] = {bits_of(corners[3 * j]), bits_of(corners[3 * j + 1]), bits_of(corners[3 * j + 2])};
+    batch_hashes_[j] = hash_of(batch_keys_[j]);
+  }
+  // The table is far larger than the cache: fetch the slot a few corners ahead of its lookup.
+  constexpr size_t kAhead = 16;
+  for (size_t j = 0; j < m; ++j) {
+    if (j + kAhead < m) __builtin_prefetch(&slots_[batch_hashes_[j + kAhead] & mask_]);
+    const Key& key = batch_keys_[j];
+    for (uint64_t i = batch_hashes_[j] & mask_;; i = (i + 1) & mask_) {
+      const uint32_t id = slots_[i];
+      if (id == kEmpty) {
+        slots_[i] = batch_ids_[j] = static_cast<uint32_t>(keys_.size());
+        keys_.push_back(key);
+        break;
+      }
+      if (keys_[id] == key) {
+        batch_ids_[j] = id;
+        break;
+      }
     }
-    if (keys_[id] == key) return id;
   }
-}
-
-bool Welder::add(const float* a, const float* b, const float* c) {
-  const uint32_t ia = id_of(a), ib = id_of(b), ic = id_of(c);
-  if (ia == ib || ib == ic || ia == ic) {
-    ++dropped_;
-    return false;
+  for (size_t t = 0; t < n; ++t) {
+    const uint32_t a = batch_ids_[3 * t], b = batch_ids_[3 * t + 1], c = batch_ids_[3 * t + 2];
+    dropped[t] = a == b || b == c || a == c;
+    if (dropped[t]) {
+      ++dropped_;
+    } else {
+      triangles_.push_back({a, b, c});
+    }
   }
-  triangles_.push_back({ia, ib, ic});
-  return true;
 }
 
 void Welder::finish(Mesh& mesh) {
@@ -83,6 +98,9 @@ void Welder::finish(Mesh& mesh) {
   keys_ = {};
   slots_ = {};
   triangles_ = {};
+  batch_keys_ = {};
+  batch_hashes_ = {};
+  batch_ids_ = {};
   dropped_ = 0;
 }
 

@@ -12,13 +12,15 @@ namespace tranche::geo {
 
 class Welder {
  public:
-  // `triangles` is the number of add() calls to come; the table is sized for all 3·n corners being
-  // distinct, so it never rehashes. n must be below 2^32 / 3 (the vertex ids are 32-bit).
+  // `triangles` is the total number of triangles to come; the table is sized for all 3·n corners
+  // being distinct, so it never rehashes. n must be at most kMaxTriangles (vertex ids are 32-bit).
   explicit Welder(size_t triangles);
 
-  // Adds one triangle (corners a, b, c in mm, finite, counter-clockwise seen from outside).
-  // Returns false, and adds nothing, when two corners weld to the same vertex (degenerate).
-  bool add(const float* a, const float* b, const float* c);
+  // Adds n triangles: corners[9i .. 9i+8] are corners a, b, c (x, y, z each, mm, finite),
+  // counter-clockwise seen from outside. Sets dropped[i] to 1, and adds nothing, where two
+  // corners weld to the same vertex (a degenerate triangle), else to 0. Batches let lookups be
+  // prefetched: a few thousand triangles per call is best.
+  void add(const float* corners, size_t n, uint8_t* dropped);
 
   // Moves the vertices and triangles into `mesh` (its name is left alone); the welder is empty after.
   void finish(Mesh& mesh);
@@ -26,11 +28,14 @@ class Welder {
   static constexpr uint64_t kMaxTriangles = (uint64_t{1} << 32) / 3 - 1;
 
  private:
-  uint32_t id_of(const float* p);
+  using Key = std::array<uint32_t, 3>;  // float bit patterns of one vertex
 
-  std::vector<std::array<uint32_t, 3>> keys_;  // float bit patterns of each vertex, indexed by id
-  std::vector<uint32_t> slots_;                // open addressing, linear probing; kEmpty or a vertex id
+  std::vector<Key> keys_;        // by vertex id
+  std::vector<uint32_t> slots_;  // open addressing, linear probing; kEmpty or a vertex id
   std::vector<std::array<uint32_t, 3>> triangles_;
+  std::vector<Key> batch_keys_;
+  std::vector<uint64_t> batch_hashes_;
+  std::vector<uint32_t> batch_ids_;
   uint64_t mask_ = 0;
   uint64_t dropped_ = 0;
 };
