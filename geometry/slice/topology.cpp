@@ -1,0 +1,75 @@
+#include "geometry/slice/topology.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+namespace tranche::geo {
+
+MeshTopology build_topology(const Mesh& mesh) {
+  MeshTopology topo;
+  const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+  topo.tri_edges.assign(nt, {MeshTopology::kNone, MeshTopology::kNone, MeshTopology::kNone});
+
+  // Counting sort of the half-edges by their lower vertex id, then a small sort per vertex by the
+  // upper id: equal (lower, upper) pairs become one edge.
+  std::vector<uint32_t> start(nv + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++topo.degenerate_triangles;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  }
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  struct Half {
+    uint32_t upper;
+    uint32_t half;  // triangle * 3 + k
+  };
+  std::vector<Half> halves(start[nv]);
+  {
+    std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < nt; ++t) {
+      const auto& tri = mesh.triangles[t];
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+      for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t a = tri[k], b = tri[(k + 1) % 3];
+        halves[cursor[std::min(a, b)]++] = {std::max(a, b), static_cast<uint32_t>(t * 3 + k)};
+      }
+    }
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t v = r.begin(); v != r.end(); ++v)
+      std::sort(halves.begin() + start[v], halves.begin() + start[v + 1], [](const Half& x, const Half& y) {
+        return x.upper < y.upper || (x.upper == y.upper && x.half < y.half);
+      });
+  });
+
+  topo.edges.reserve(halves.size() / 2 + 1);
+  for (size_t v = 0; v < nv; ++v) {
+    for (uint32_t i = start[v], end = start[v + 1]; i < end;) {
+      uint32_t j = i;
+      while (j < end && halves[j].upper == halves[i].upper) ++j;
+      const auto id = static_cast<uint32_t>(topo.edges.size());
+      MeshTopology::Edge e;
+      e.v0 = static_cast<uint32_t>(v);
+      e.v1 = halves[i].upper;
+      e.count = j - i;
+      e.t0 = halves[i].half / 3;
+      if (j - i >= 2) e.t1 = halves[i + 1].half / 3;
+      for (uint32_t h = i; h < j; ++h) topo.tri_edges[halves[h].half / 3][halves[h].half % 3] = id;
+      if (e.count == 1) ++topo.boundary_edges;
+      if (e.count > 2) ++topo.nonmanifold_edges;
+      if (e.count == 2) {
+        // Same direction in both triangles: the first vertex of the half-edge is the same.
+        auto from = [&](uint32_t half) { return mesh.triangles[half / 3][half % 3]; };
+        if (from(halves[i].half) == from(halves[i + 1].half)) ++topo.misoriented_edges;
+      }
+      topo.edges.push_back(e);
+      i = j;
+    }
+  }
+  return topo;
+}
+
+}  // namespace tranche::geo

@@ -1,0 +1,36 @@
+// Edge adjacency of a welded mesh: which triangles share each edge. Slicing follows it to chain
+// segments into loops without comparing coordinates.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/mesh/mesh.h"
+
+namespace tranche::geo {
+
+struct MeshTopology {
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+  struct Edge {
+    uint32_t v0 = 0, v1 = 0;          // vertex ids, v0 < v1
+    uint32_t t0 = kNone, t1 = kNone;  // the first two triangles using the edge (t1 = kNone: boundary)
+    uint32_t count = 0;               // triangles using it: 2 on a closed manifold, 1 on a boundary
+  };
+
+  std::vector<Edge> edges;
+  // tri_edges[t][k] is the edge from vertex k to vertex (k + 1) % 3 of triangle t; all kNone for
+  // a degenerate triangle (a vertex id repeated), which slicing ignores.
+  std::vector<std::array<uint32_t, 3>> tri_edges;
+
+  size_t boundary_edges = 0;        // used by one triangle: the mesh has a hole there
+  size_t nonmanifold_edges = 0;     // used by three or more triangles
+  size_t misoriented_edges = 0;     // two triangles traversing the edge the same way (one is flipped)
+  size_t degenerate_triangles = 0;  // a vertex id repeated
+};
+
+// O(vertices + triangles) time and memory.
+MeshTopology build_topology(const Mesh& mesh);
+
+}  // namespace tranche::geo
