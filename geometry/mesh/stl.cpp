@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <new>
 #include <system_error>
 
 #include "geometry/mesh/stl_parse.h"
@@ -56,7 +58,8 @@ Result<Bytes> read_all(const std::string& path) {
   const bool regular = S_ISREG(st.st_mode);
   Bytes b;
   size_t capacity = regular ? static_cast<size_t>(st.st_size) : size_t{1} << 20;
-  b.data.reset(new char[std::max<size_t>(capacity, 1)]);
+  b.data.reset(new (std::nothrow) char[std::max<size_t>(capacity, 1)]);
+  if (!b.data) return Error{path, fmt::format("not enough memory to read the model ({} MB)", capacity >> 20)};
   for (;;) {
     if (b.size == capacity) {
       if (regular) break;  // a file that grows while we read it is taken at its size when opened
@@ -64,7 +67,8 @@ Result<Bytes> read_all(const std::string& path) {
         return Error{path, fmt::format("more than {} MiB from a pipe or device; save the model to a file",
                                        kPipeLimit >> 20)};
       }
-      auto bigger = std::unique_ptr<char[]>(new char[capacity * 2]);
+      auto bigger = std::unique_ptr<char[]>(new (std::nothrow) char[capacity * 2]);
+      if (!bigger) return Error{path, "not enough memory to read the model"};
       std::memcpy(bigger.get(), b.data.get(), b.size);
       b.data = std::move(bigger);
       capacity *= 2;
@@ -191,14 +195,7 @@ Result<Mesh> weld(stl::RawStl raw, const std::string& file, Report& report) {
   return mesh;
 }
 
-void put_u32(char* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<char>((v >> (8 * i)) & 0xff);
-}
-void put_float(char* p, double v) { put_u32(p, std::bit_cast<uint32_t>(static_cast<float>(v))); }
-
-}  // namespace
-
-Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& report) {
+Result<Mesh> parse_bytes(std::string_view bytes, const std::string& name, Report& report) {
   if (bytes.empty()) {
     return Error{name,
                  "the file is empty (0 bytes); export the model again or check that it was copied "
@@ -224,6 +221,24 @@ Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& 
   Result<stl::RawStl> raw = stl::parse_binary(bytes, name, report);
   if (!raw) return raw.error();
   return weld(std::move(raw.value()), name, report);
+}
+
+void put_u32(char* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+void put_float(char* p, double v) { put_u32(p, std::bit_cast<uint32_t>(static_cast<float>(v))); }
+
+}  // namespace
+
+Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& report) {
+  try {
+    return parse_bytes(bytes, name, report);
+  } catch (const std::bad_alloc&) {
+    return Error{name,
+                 fmt::format("not enough memory to load the model ({} MB of STL); close other programs or "
+                             "simplify the model",
+                             bytes.size() >> 20)};
+  }
 }
 
 Result<Mesh> load_stl(const std::string& path, Report& report) {
@@ -256,6 +271,14 @@ Status write_stl_binary(const std::string& path, const Mesh& mesh) {
       }
     }
     const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    for (const Vec3* v : {&a, &b, &c}) {
+      for (double x : {v->x, v->y, v->z}) {
+        if (!(std::fabs(x) <= std::numeric_limits<float>::max())) {
+          return Error{stl::at_triangle(path, i),
+                       fmt::format("coordinate {} mm does not fit a 32-bit float; nothing was written", x)};
+        }
+      }
+    }
     const Vec3 u{b.x - a.x, b.y - a.y, b.z - a.z}, w{c.x - a.x, c.y - a.y, c.z - a.z};
     Vec3 nrm{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
     const double len = std::sqrt(nrm.x * nrm.x + nrm.y * nrm.y + nrm.z * nrm.z);

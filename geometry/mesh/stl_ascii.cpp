@@ -13,6 +13,8 @@
 namespace tranche::geo::stl {
 namespace {
 
+constexpr std::string_view kDamaged = "; the file is damaged here — repair or re-export the model";
+
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
 bool is_keyword(std::string_view tok, std::string_view kw) {
@@ -114,7 +116,8 @@ class Parser {
         continue;
       }
       if (!is_keyword(t.text, "endsolid")) {
-        return fail(t.line, fmt::format("expected 'facet' or 'endsolid', found {}", shown(t.text)));
+        return fail(t.line,
+                    fmt::format("expected 'facet' or 'endsolid', found {}{}", shown(t.text), kDamaged));
       }
       const std::string end_name = rest_of_line(t.line);
       if (!end_name.empty() && end_name != solid_name) {
@@ -167,7 +170,8 @@ class Parser {
                                       "re-export the model",
                                       kw, after));
     }
-    return fail(t.line, fmt::format("expected '{}' after {}, found {}", kw, after, shown(t.text)));
+    return fail(t.line,
+                fmt::format("expected '{}' after {}, found {}{}", kw, after, shown(t.text), kDamaged));
   }
 
   // Reads three numbers into out; `what` names them in messages ("vertex", "normal").
@@ -184,8 +188,8 @@ class Parser {
         case Num::kOk:
           break;
         case Num::kBad:
-          return fail(t.line, fmt::format("expected a number for the {} {} coordinate, found {}", what,
-                                          kAxis[k], shown(t.text)));
+          return fail(t.line, fmt::format("expected a number for the {} {} coordinate, found {}{}", what,
+                                          kAxis[k], shown(t.text), kDamaged));
         case Num::kRange:
           return fail(t.line, fmt::format("{} {} coordinate {} is out of range for a 32-bit float (about "
                                           "±3.4e38); check the model's units",
@@ -235,7 +239,7 @@ class Parser {
         return fail(t.line, fmt::format("'outer loop' at line {} has no 'endloop' (found {})", loop_line,
                                         shown(t.text)));
       }
-      return fail(t.line, fmt::format("expected 'vertex' or 'endloop', found {}", shown(t.text)));
+      return fail(t.line, fmt::format("expected 'vertex' or 'endloop', found {}{}", shown(t.text), kDamaged));
     }
     if (corners != 3) {
       return fail(line, fmt::format("facet has {} {}, an STL facet needs exactly 3; export the model with "

@@ -273,6 +273,14 @@ TEST_CASE("write_stl_binary: failures leave no file and say why") {
   CHECK(has(st.error().to_string(), "triangle 25: vertex id 99 is out of range"));
   CHECK(!std::filesystem::exists(path));
 
+  // Coordinates beyond float range cannot be written (and must not be cast: that is undefined).
+  m = two_cubes();
+  m.vertices[5].y = 1e300;
+  st = geo::write_stl_binary(path, m);
+  REQUIRE(!st.ok());
+  CHECK(has(st.error().to_string(), "does not fit a 32-bit float"));
+  CHECK(!std::filesystem::exists(path));
+
   // A name starting with "solid" is not written at the start of the header.
   m = two_cubes();
   m.name = "Solid block";

@@ -106,7 +106,8 @@ TEST_CASE("corpus: every stl-models file loads or fails with a clear error") {
       CHECK_MESSAGE(mesh.ok(), rel, ": ", outcome);
     }
     if (rel == "polytopes/tetrahedronMinusZero.bin.stl" && mesh.ok()) {
-      CHECK_MESSAGE(mesh->vertices.size() == 4, "-0 and +0 must weld into one vertex");
+      // Its -0s are in the normals only; -0/+0 welding is tested on generated data in stl_binary_test.
+      CHECK_MESSAGE(mesh->vertices.size() == 4, "a tetrahedron has 4 vertices");
     }
     if (mesh.ok() && !broken) {
       std::string key = rel;
