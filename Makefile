@@ -35,6 +35,7 @@ slice: build
 test: check fuzz
 
 check: build
+	@scripts/fetch-models.sh || true
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 fuzz-build: deps

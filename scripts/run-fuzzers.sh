@@ -5,6 +5,8 @@ set -euo pipefail
 build=${1:-build-fuzz}
 seconds=${2:-30}
 root=$(cd "$(dirname "$0")/.." && pwd)
+# Absolute, because each target runs from its own scratch directory.
+build=$(cd "$build" 2>/dev/null && pwd) || { echo "fuzz: no build directory ${1:-build-fuzz} (run make fuzz-build)"; exit 1; }
 status=0
 shopt -s nullglob
 for bin in "$build"/fuzz/fuzz_*; do
@@ -18,11 +20,12 @@ for bin in "$build"/fuzz/fuzz_*; do
   if ! (cd "$work" && "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
         -print_final_stats=0 corpus >"$work/log" 2>&1); then
     echo "fuzz: $name FAILED; last lines of its log:"; tail -40 "$work/log"
-    mkdir -p "$root/$build/fuzz-failures"; cp "$work"/crash-* "$work"/timeout-* "$work"/oom-* "$work"/leak-* \
-      "$root/$build/fuzz-failures/" 2>/dev/null || true
+    mkdir -p "$build/fuzz-failures"; cp "$work"/crash-* "$work"/timeout-* "$work"/oom-* "$work"/leak-* \
+      "$build/fuzz-failures/" 2>/dev/null || true
+    echo "fuzz: inputs that failed are in $build/fuzz-failures/"
     status=1
   else
-    grep -E '^#[0-9]+.*DONE' "$work/log" | tail -1 || true
+    grep -E '^#[0-9]+.*DONE|^Done [0-9]+ runs' "$work/log" | tail -2 || true
   fi
   rm -rf "$work"
 done
