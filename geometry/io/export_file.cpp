@@ -1,0 +1,117 @@
+#include "geometry/io/export_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+namespace tranche::geo {
+
+Result<OutputFile> OutputFile::open(const std::string& path) {
+  static std::atomic<int> counter{0};
+  std::string temp = fmt::format("{}.tmp-{}-{}", path, ::getpid(), counter++);
+  std::FILE* f = std::fopen(temp.c_str(), "wb");
+  if (!f)
+    return Error{path, fmt::format("cannot write here: {}; check that the folder exists and is writable",
+                                   std::strerror(errno))};
+  std::setvbuf(f, nullptr, _IOFBF, 1 << 20);
+  return OutputFile(path, std::move(temp), f);
+}
+
+OutputFile::OutputFile(OutputFile&& other) noexcept
+    : path_(std::move(other.path_)), temp_(std::move(other.temp_)), f_(other.f_) {
+  other.f_ = nullptr;
+  other.temp_.clear();
+}
+
+OutputFile::~OutputFile() {
+  if (f_) std::fclose(f_);
+  if (!temp_.empty()) std::remove(temp_.c_str());
+}
+
+Status OutputFile::write(std::string_view bytes) {
+  if (!f_) return Error{path_, "write after the file was closed"};
+  if (std::fwrite(bytes.data(), 1, bytes.size(), f_) != bytes.size())
+    return Error{path_, fmt::format("write failed: {}", std::strerror(errno))};
+  return ok_status();
+}
+
+Status OutputFile::commit() {
+  if (!f_) return Error{path_, "file already closed"};
+  const bool flushed = std::fflush(f_) == 0;
+  const int flush_errno = errno;
+  const bool closed = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (!flushed || !closed)
+    return Error{path_, fmt::format("write failed: {}", std::strerror(flushed ? errno : flush_errno))};
+  std::error_code ec;
+  std::filesystem::rename(temp_, path_, ec);
+  if (ec) return Error{path_, fmt::format("cannot replace the file: {}", ec.message())};
+  temp_.clear();
+  return ok_status();
+}
+
+void append_mm(fmt::memory_buffer& out, coord_t units) {
+  // Integer arithmetic: a decimal printed this way reads back to the same nanometre.
+  uint64_t u = units < 0 ? 0 - static_cast<uint64_t>(units) : static_cast<uint64_t>(units);
+  if (units < 0) out.push_back('-');
+  fmt::format_to(std::back_inserter(out), "{}", u / 1000000);
+  uint32_t frac = static_cast<uint32_t>(u % 1000000);
+  if (frac == 0) return;
+  char digits[7];
+  int n = 6;
+  for (int i = 5; i >= 0; --i) {
+    digits[i] = static_cast<char>('0' + frac % 10);
+    frac /= 10;
+  }
+  while (digits[n - 1] == '0') --n;
+  out.push_back('.');
+  out.append(digits, digits + n);
+}
+
+void append_json_string(fmt::memory_buffer& out, std::string_view s) {
+  out.push_back('"');
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out.push_back('\\');
+      out.push_back(static_cast<char>(c));
+    } else if (c < 0x20) {
+      fmt::format_to(std::back_inserter(out), "\\u{:04x}", c);
+    } else {
+      out.push_back(static_cast<char>(c));
+    }
+  }
+  out.push_back('"');
+}
+
+void append_xml_escaped(fmt::memory_buffer& out, std::string_view s) {
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out.append(std::string_view("&amp;"));
+        break;
+      case '<':
+        out.append(std::string_view("&lt;"));
+        break;
+      case '>':
+        out.append(std::string_view("&gt;"));
+        break;
+      case '"':
+        out.append(std::string_view("&quot;"));
+        break;
+      case '\'':
+        out.append(std::string_view("&apos;"));
+        break;
+      default:
+        // Control characters are not allowed in XML 1.0.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          out.push_back('?');
+        else
+          out.push_back(c);
+    }
+  }
+}
+
+}  // namespace tranche::geo

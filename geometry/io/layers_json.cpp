@@ -1,0 +1,80 @@
+#include "geometry/io/layers_json.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+#include "geometry/io/export_file.h"
+
+namespace tranche::geo {
+namespace {
+
+// Layers are formatted in parallel in batches of this many, then written in order: output
+// memory stays bounded whatever the model.
+constexpr size_t kBatch = 64;
+
+void append_ring(fmt::memory_buffer& out, const Ring& ring) {
+  out.push_back('[');
+  for (size_t i = 0; i < ring.size(); ++i) {
+    if (i) out.push_back(',');
+    out.push_back('[');
+    append_mm(out, ring[i].X);
+    out.push_back(',');
+    append_mm(out, ring[i].Y);
+    out.push_back(']');
+  }
+  out.push_back(']');
+}
+
+}  // namespace
+
+void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
+  double area = 0;
+  for (const auto& island : layer.islands) area += island.area_mm2;
+  fmt::format_to(
+      std::back_inserter(out),
+      "{{\"index\": {}, \"z_bottom\": {}, \"z_top\": {}, \"z_slice\": {}, \"area\": {}, \"islands\": [",
+      layer.index, layer.z_bottom, layer.z_top, layer.z_slice(), area);
+  for (size_t i = 0; i < layer.islands.size(); ++i) {
+    const Island& island = layer.islands[i];
+    fmt::format_to(std::back_inserter(out), "{}\n  {{\"area\": {}, \"outer\": ", i ? "," : "",
+                   island.area_mm2);
+    append_ring(out, island.shape.outer);
+    out.append(std::string_view(", \"holes\": ["));
+    for (size_t h = 0; h < island.shape.holes.size(); ++h) {
+      if (h) out.push_back(',');
+      append_ring(out, island.shape.holes[h]);
+    }
+    out.append(std::string_view("]}"));
+  }
+  out.append(std::string_view(layer.islands.empty() ? "]}" : "\n]}"));
+}
+
+Status write_layers_json(const std::string& path, const std::vector<Layer>& layers,
+                         const std::string& source) {
+  auto file = OutputFile::open(path);
+  if (!file) return file.error();
+  fmt::memory_buffer head;
+  fmt::format_to(std::back_inserter(head),
+                 "{{\"format\": \"tranche-layers\", \"version\": {}, \"units\": \"mm\", \"source\": ",
+                 kLayersJsonVersion);
+  append_json_string(head, source);
+  fmt::format_to(std::back_inserter(head), ", \"layer_count\": {},\n\"layers\": [\n", layers.size());
+  if (auto st = file->write({head.data(), head.size()}); !st) return st;
+
+  std::vector<fmt::memory_buffer> batch(kBatch);
+  for (size_t base = 0; base < layers.size(); base += kBatch) {
+    const size_t n = std::min(kBatch, layers.size() - base);
+    tbb::parallel_for(size_t{0}, n, [&](size_t i) {
+      batch[i].clear();
+      append_layer_json(batch[i], layers[base + i]);
+      batch[i].append(std::string_view(base + i + 1 < layers.size() ? ",\n" : "\n"));
+    });
+    for (size_t i = 0; i < n; ++i)
+      if (auto st = file->write({batch[i].data(), batch[i].size()}); !st) return st;
+  }
+  if (auto st = file->write("]}\n"); !st) return st;
+  return file->commit();
+}
+
+}  // namespace tranche::geo

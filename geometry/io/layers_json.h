@@ -1,0 +1,25 @@
+// --export-layers: every layer's islands as JSON, format "tranche-layers" version 1. The format
+// is specified in docs/formats.md; it is streamed layer by layer, never built as a DOM.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "geometry/core/layer.h"
+#include "runtime/base/result.h"
+
+namespace tranche::geo {
+
+inline constexpr int kLayersJsonVersion = 1;
+
+// Writes `layers` (bottom to top) to `path` atomically (a temporary file renamed at the end).
+// `source` names the model in the header (e.g. its file name).
+Status write_layers_json(const std::string& path, const std::vector<Layer>& layers,
+                         const std::string& source);
+
+// One element of the "layers" array, without a trailing comma or newline.
+void append_layer_json(fmt::memory_buffer& out, const Layer& layer);
+
+}  // namespace tranche::geo

@@ -1,0 +1,22 @@
+// --export-svg: every layer's islands as an SVG contact sheet (format "tranche-layers-svg"
+// version 1, specified in docs/formats.md): one <g id="layer-N"> per layer carrying its index
+// and z range, laid out in a grid with a caption, viewable in any browser. Inside a layer group,
+// path coordinates are the model's (x, −y) in mm, exactly; the group's transform only places the
+// layer on the sheet.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/core/layer.h"
+#include "runtime/base/result.h"
+
+namespace tranche::geo {
+
+inline constexpr int kLayersSvgVersion = 1;
+inline constexpr const char* kTrancheSvgNamespace = "urn:tranche:layers";
+
+// Writes `layers` (bottom to top) to `path` atomically. `source` names the model in the title.
+Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers, const std::string& source);
+
+}  // namespace tranche::geo
