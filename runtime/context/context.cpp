@@ -1,0 +1,68 @@
+#include "runtime/context/context.h"
+
+namespace tranche::ctx {
+
+PropertyValues PropertyValues::schema_defaults() {
+  PropertyValues p;
+  for (const auto& info : schema::properties()) p[info.id] = info.default_value;
+  return p;
+}
+
+namespace {
+const PropertyValues& static_defaults() {
+  static const PropertyValues p = PropertyValues::schema_defaults();
+  return p;
+}
+}  // namespace
+
+LayerTable::LayerTable(size_t layer_count) : rows_(layer_count) {
+  for (auto& r : rows_) r.fill(0.0);
+}
+
+int LayerTable::column(FieldId field) {
+  switch (field) {
+    case FieldId::LayerIndex:
+      return 0;
+    case FieldId::LayerZBottom:
+      return 1;
+    case FieldId::LayerZ:
+      return 2;
+    case FieldId::LayerHeight:
+      return 3;
+    case FieldId::LayerArea:
+      return 4;
+    case FieldId::LayerIslands:
+      return 5;
+    case FieldId::LayerTime:
+      return 6;
+    default:
+      return -1;
+  }
+}
+
+bool LayerTable::holds(FieldId field) { return column(field) >= 0; }
+
+double LayerTable::get(long index, FieldId field) const {
+  int c = column(field);
+  if (c < 0 || index < 0 || static_cast<size_t>(index) >= rows_.size()) return 0.0;
+  return rows_[static_cast<size_t>(index)][static_cast<size_t>(c)];
+}
+
+void LayerTable::set(size_t index, FieldId field, double value) {
+  int c = column(field);
+  if (c >= 0 && index < rows_.size()) rows_[index][static_cast<size_t>(c)] = value;
+}
+
+Context::Context() : props_(&static_defaults()) {}
+
+void Context::clear_from(schema::Level level) {
+  for (const auto& f : schema::fields())
+    if (static_cast<int>(f.level) >= static_cast<int>(level)) values_[slot(f.id)] = 0.0;
+  if (static_cast<int>(level) <= static_cast<int>(schema::Level::Path)) {
+    points_ = {};
+    pieces_ = {};
+  }
+  if (static_cast<int>(level) <= static_cast<int>(schema::Level::Layer)) islands_ = {};
+}
+
+}  // namespace tranche::ctx

@@ -1,0 +1,112 @@
+// The extension points the rule VM implements: a Decider sets properties at each stage,
+// Executors add G-code before/after elements, Replacers produce an element's output instead of
+// the default. The slicing loop calls them with the context of the element at hand; without
+// rules it uses the built-in defaults (defaults.h) and the --set overrides (overrides.h).
+//
+// Threading: layers are planned in parallel, so every method may be called concurrently from
+// several threads with different contexts; implementations keep no mutable shared state.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "runtime/base/result.h"
+#include "runtime/context/context.h"
+
+namespace tranche::ctx {
+
+// Decides the properties of one stage for one element (the cascade: last matching rule wins).
+class Decider {
+ public:
+  virtual ~Decider() = default;
+  // Sets the properties decided at `stage` in `props`. On entry `props` holds, for those
+  // properties, the value the lower cascade layers give (schema default, then built-in
+  // defaults, the fill-angle script...) and, for earlier stages, their final values.
+  virtual Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const = 0;
+  // The deepest level whose fields the decisions of `stage` read. The loop calls decide(stage)
+  // once per element of that level and reuses the result below it (hoisting): Level::Path for
+  // Stage::Piece means speed and flow do not vary along a path, so there is no per-piece call.
+  virtual schema::Level varies_at(schema::Stage stage) const = 0;
+};
+
+// Applies several deciders in cascade order (later ones see and override earlier ones).
+class DeciderChain final : public Decider {
+ public:
+  void add(const Decider* d) {
+    if (d) chain_.push_back(d);
+  }
+  Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
+  schema::Level varies_at(schema::Stage stage) const override;
+
+ private:
+  std::vector<const Decider*> chain_;
+};
+
+// Where executor and replacer output goes: G-code text lines, without the newline.
+class LineSink {
+ public:
+  virtual ~LineSink() = default;
+  virtual void line(std::string_view text) = 0;
+};
+
+enum class When : uint8_t { Before, After };
+
+// `before LEVEL { ... }` / `after LEVEL { ... }` and `on LEVEL.start|end`.
+class Executors {
+ public:
+  virtual ~Executors() = default;
+  // Whether any executor is attached to this hook: the loop skips preparing the context (path
+  // points, pieces) for hooks nobody uses.
+  virtual bool has(schema::Level level, When when) const = 0;
+  // Emits the hook's G-code for the element `ctx` describes (nothing when no filter matches).
+  virtual Status run(schema::Level level, When when, const Context& ctx, LineSink& out) const = 0;
+};
+
+// Options of `move to (X, Y) [travel] [with speed = S, flow = F]`; unset values take the
+// element's decided speed and flow.
+struct MoveOptions {
+  bool travel = false;
+  std::optional<double> speed;  // mm/s
+  std::optional<double> flow;   // ratio
+};
+
+// What the statements of a replacer can do to the element being replaced.
+class ReplaceApi {
+ public:
+  virtual ~ReplaceApi() = default;
+  // `move to (x, y)`: x, y in bed coordinates (mm).
+  virtual void move_to(double x_mm, double y_mm, const MoveOptions& options) = 0;
+  virtual void gcode(std::string_view line) = 0;    // `gcode "..."`, one line (already rendered)
+  virtual void comment(std::string_view text) = 0;  // `comment "..."` -> "; text"
+  // `default`: the element's normal output, after any alteration made so far.
+  virtual Status emit_default() = 0;
+  // `offset D` (mm): an island grows (D > 0) or shrinks before its perimeters and infill are
+  // made; a path's points move sideways, positive to the left of travel.
+  virtual Status offset(double mm) = 0;
+  // `reverse`: paths only.
+  virtual Status reverse() = 0;
+};
+
+// `replace island { ... }` and `replace path { ... }`.
+class Replacers {
+ public:
+  virtual ~Replacers() = default;
+  // Whether any replacer exists for the level (Island or Path).
+  virtual bool has(schema::Level level) const = 0;
+  // Runs the replacer that matches the element, if any, and returns whether one did (false:
+  // the default output is used). An altered element is not offered to replacers again.
+  virtual Result<bool> replace(schema::Level level, const Context& ctx, ReplaceApi& api) const = 0;
+};
+
+// Everything the loop consults, in cascade order: schema defaults < `defaults` (the built-in
+// table, later stdlib/defaults.rules) < the fill-angle script (island.fill_angle_deg) <
+// `decider` (the user's rules, then --set). Any of them may be null.
+struct Rules {
+  const Decider* defaults = nullptr;
+  const Decider* decider = nullptr;
+  const Executors* executors = nullptr;
+  const Replacers* replacers = nullptr;
+};
+
+}  // namespace tranche::ctx

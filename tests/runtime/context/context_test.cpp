@@ -1,0 +1,143 @@
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "runtime/context/context.h"
+#include "runtime/context/defaults.h"
+#include "runtime/context/overrides.h"
+
+using namespace tranche;
+using namespace tranche::ctx;
+using schema::Level;
+using schema::PathKind;
+using schema::Stage;
+
+namespace {
+double decided(const Decider& d, Stage stage, const Context& c, PropId id) {
+  PropertyValues p = PropertyValues::schema_defaults();
+  REQUIRE(d.decide(stage, c, p).ok());
+  return p[id];
+}
+}  // namespace
+
+TEST_CASE("context: layer table reads other layers, empty outside the print") {
+  LayerTable t(3);
+  t.set(1, FieldId::LayerArea, 12.5);
+  t.set(2, FieldId::LayerZ, 0.6);
+  t.set(0, FieldId::IslandArea, 99);  // not a layer field: ignored
+  Context c;
+  c.set_layers(&t);
+  c.set(FieldId::LayerIndex, 2);
+  CHECK(c.below(FieldId::LayerArea) == 12.5);
+  CHECK(c.layer(2, FieldId::LayerZ) == 0.6);
+  CHECK(c.above(FieldId::LayerZ) == 0);
+  CHECK(c.layer(-1, FieldId::LayerArea) == 0);
+  CHECK(c.layer(0, FieldId::IslandArea) == 0);
+  CHECK(LayerTable::holds(FieldId::LayerTime));
+  CHECK_FALSE(LayerTable::holds(FieldId::PathLength));
+}
+
+TEST_CASE("context: entering a level clears it and every deeper level") {
+  Context c;
+  c.set(FieldId::LayerIndex, 4);
+  c.set(FieldId::IslandArea, 3);
+  c.set(FieldId::PieceLength, 1);
+  c.clear_from(Level::Island);
+  CHECK(c.get(FieldId::LayerIndex) == 4);
+  CHECK(c.get(FieldId::IslandArea) == 0);
+  CHECK(c.get(FieldId::PieceLength) == 0);
+}
+
+TEST_CASE("built-in defaults: speed by path kind, first layer, fan and fill angle alternation") {
+  BuiltinDefaults d;
+  Context c;
+  c.set(FieldId::LayerIndex, 3);
+  auto speed_of = [&](PathKind k) {
+    c.set(FieldId::PathKind, static_cast<double>(k));
+    return decided(d, Stage::Piece, c, PropId::Speed);
+  };
+  CHECK(speed_of(PathKind::OuterPerimeter) == 25);
+  CHECK(speed_of(PathKind::InnerPerimeter) == 45);
+  CHECK(speed_of(PathKind::Infill) == 80);
+  CHECK(speed_of(PathKind::SolidInfill) == 60);
+  CHECK(speed_of(PathKind::TopSolid) == 40);
+  CHECK(speed_of(PathKind::BottomSolid) == 40);
+  CHECK(speed_of(PathKind::Bridge) == 25);
+  CHECK(speed_of(PathKind::Skirt) == 30);
+  CHECK(decided(d, Stage::Cooling, c, PropId::Fan) == 1.0);
+  CHECK(decided(d, Stage::Island, c, PropId::FillAngle) == 135);
+  c.set(FieldId::LayerIndex, 0);
+  CHECK(speed_of(PathKind::Infill) == 20);
+  CHECK(speed_of(PathKind::OuterPerimeter) == 20);
+  CHECK(decided(d, Stage::Cooling, c, PropId::Fan) == 0.0);
+  CHECK(decided(d, Stage::Island, c, PropId::FillAngle) == 45);
+  // Decisions at a stage only touch that stage's properties.
+  CHECK(decided(d, Stage::Piece, c, PropId::Fan) == schema::property(PropId::Fan).default_value);
+}
+
+TEST_CASE("built-in defaults: hoisting levels follow the fields the table reads") {
+  BuiltinDefaults d;
+  CHECK(d.varies_at(Stage::Piece) == Level::Path);  // speed reads path.kind, not piece fields
+  CHECK(d.varies_at(Stage::Cooling) == Level::Layer);
+  CHECK(d.varies_at(Stage::Island) == Level::Layer);
+  CHECK(d.varies_at(Stage::Print) == Level::Print);
+}
+
+TEST_CASE("--set: numbers with optional units, enums, booleans") {
+  auto v = [](const char* k, const char* val) {
+    auto r = parse_override(k, val);
+    REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
+    return r->value;
+  };
+  CHECK(v("layer_height", "0.15") == doctest::Approx(0.15));
+  CHECK(v("layer_height", "0.15mm") == doctest::Approx(0.15));
+  CHECK(v("layer_height", " 0.15 mm") == doctest::Approx(0.15));
+  CHECK(v("infill_density", "35%") == doctest::Approx(0.35));
+  CHECK(v("infill_density", "0.35") == doctest::Approx(0.35));
+  CHECK(v("nozzle_temp", "215C") == 215);
+  CHECK(v("nozzle_temp", "215°C") == 215);
+  CHECK(v("fill_angle", "30deg") == 30);
+  CHECK(v("speed", "50mm/s") == 50);
+  CHECK(v("perimeters", "3") == 3);
+  CHECK(v("seam", "rear") == static_cast<double>(schema::Seam::Rear));
+  CHECK(v("gcode_flavor", "klipper") == static_cast<double>(schema::Flavor::Klipper));
+  CHECK(v("relative_e", "true") == 1);
+  CHECK(v("outer_first", "false") == 0);
+}
+
+TEST_CASE("--set: clear errors for unknown keys, bad units and out-of-range values") {
+  auto err = [](const char* k, const char* val) {
+    auto r = parse_override(k, val);
+    REQUIRE_FALSE(r.ok());
+    return r.error().to_string();
+  };
+  std::string e = err("layer_hieght", "0.2");
+  CHECK(e.find("unknown property 'layer_hieght'") != std::string::npos);
+  CHECK(e.find("layer_height") != std::string::npos);
+  CHECK(err("sped", "20").find("speed") != std::string::npos);
+  CHECK(err("layer.index", "2").find("context field") != std::string::npos);
+  CHECK(err("layer_height", "0.2 mm/s").find("not a unit") != std::string::npos);
+  CHECK(err("layer_height", "5").find("outside the range") != std::string::npos);
+  CHECK(err("infill_density", "20").find("20%") != std::string::npos);
+  CHECK(err("perimeters", "2.5").find("whole number") != std::string::npos);
+  CHECK(err("seam", "random").find("aligned, nearest, rear") != std::string::npos);
+  CHECK(err("relative_e", "yes").find("true or false") != std::string::npos);
+  CHECK(err("speed", "fast").find("needs a number") != std::string::npos);
+  CHECK(err("speed", "").find("missing value") != std::string::npos);
+}
+
+TEST_CASE("--set overrides win over the built-in defaults at the property's stage") {
+  BuiltinDefaults b;
+  auto o = Overrides::parse({{"speed", "33"}, {"fan", "50%"}});
+  REQUIRE(o.ok());
+  DeciderChain chain;
+  chain.add(&b);
+  chain.add(&*o);
+  Context c;
+  c.set(FieldId::LayerIndex, 0);
+  c.set(FieldId::PathKind, static_cast<double>(PathKind::Infill));
+  CHECK(decided(chain, Stage::Piece, c, PropId::Speed) == 33);
+  CHECK(decided(chain, Stage::Cooling, c, PropId::Fan) == 0.5);
+  CHECK(decided(chain, Stage::Island, c, PropId::FillAngle) == 45);
+  CHECK(chain.varies_at(Stage::Piece) == Level::Path);
+}
