@@ -11,7 +11,8 @@ namespace tranche::geo {
 Result<Polygons> union_nonzero(const Rings& loops) {
   try {
     ClipperLib::Clipper clipper;
-    clipper.AddPaths(loops, ClipperLib::ptSubject, true);
+    // Nothing with an area to add: Clipper's Execute would report failure on the empty input.
+    if (!clipper.AddPaths(loops, ClipperLib::ptSubject, true)) return Polygons{};
     ClipperLib::PolyTree tree;
     if (!clipper.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero))
       return Error{"", "polygon union failed"};

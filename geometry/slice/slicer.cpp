@@ -53,9 +53,9 @@ struct Segment {
   uint32_t tri;
 };
 
-// An open chain closed on itself across a gap wider than the tolerance.
+// A gap wider than the tolerance bridged by a straight edge.
 struct OpenLoop {
-  Point end, start;  // the chain stops at `end`; the closing edge goes back to `start`
+  Point end, start;  // a chain stops at `end`; the bridging edge goes to the `start` of a chain
 };
 
 struct LayerOut {
@@ -75,8 +75,45 @@ double dist(const Point& p, const Point& q) {
   return std::hypot(static_cast<double>(p.X - q.X), static_cast<double>(p.Y - q.Y));
 }
 
-// Joins open chains end → start, nearest pair first, when the gap is at most `tol` (units);
-// returns the joined loops and records the ones that stay open (closed on themselves).
+struct Candidate {
+  double d;
+  uint32_t from, to;  // chain `from`'s end to chain `to`'s start
+  // Nearest first; at equal distance another chain before the chain's own start (a chain closed
+  // on itself across a hole is usually a sliver).
+  bool operator<(const Candidate& o) const {
+    return std::tuple(d, from == to, from, to) < std::tuple(o.d, o.from == o.to, o.from, o.to);
+  }
+};
+
+// Greedy matching of ends to starts, nearest pair first: next[i] = the chain after chain i.
+void match(std::vector<Candidate>& cand, std::vector<uint32_t>& next, std::vector<uint32_t>& prev) {
+  std::sort(cand.begin(), cand.end());
+  for (const auto& c : cand) {
+    if (next[c.from] != kNone || prev[c.to] != kNone) continue;
+    next[c.from] = c.to;
+    prev[c.to] = c.from;
+  }
+}
+
+// Concatenates chains along `next` from `head` (marking them done).
+Ring follow(const std::vector<Ring>& chains, const std::vector<uint32_t>& next, uint32_t head,
+            std::vector<char>& done) {
+  Ring ring;
+  for (uint32_t c = head; c != kNone && !done[c]; c = next[c]) {
+    done[c] = 1;
+    ring.insert(ring.end(), chains[c].begin(), chains[c].end());
+  }
+  return ring;
+}
+
+// Beyond this many open chains in one layer (after joining small gaps) every chain is closed on
+// itself instead of being matched with the others: keeps a shredded mesh from costing k².
+constexpr size_t kMaxMatchedChains = 2048;
+
+// Closes open chains into loops. First, ends closer than `tol` (units) to a start are joined,
+// nearest pair first, silently. Then the chains still open are joined end → start, again nearest
+// pair first, whatever the distance (a chain's own start is a candidate too): each such joint is
+// a straight edge across a hole in the mesh, recorded for an "open-loop" warning.
 void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& out) {
   const size_t n = chains.size();
   std::vector<uint32_t> by_x(n);
@@ -84,10 +121,6 @@ void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& o
   std::sort(by_x.begin(), by_x.end(), [&](uint32_t a, uint32_t b) {
     return std::tie(chains[a].front().X, a) < std::tie(chains[b].front().X, b);
   });
-  struct Candidate {
-    double d;
-    uint32_t from, to;  // chain `from`'s end to chain `to`'s start
-  };
   std::vector<Candidate> cand;
   for (uint32_t i = 0; i < n; ++i) {
     const Point& e = chains[i].back();
@@ -98,30 +131,41 @@ void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& o
       if (d <= tol) cand.push_back({d, i, *it});
     }
   }
-  std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
-    return std::tie(a.d, a.from, a.to) < std::tie(b.d, b.from, b.to);
-  });
   std::vector<uint32_t> next(n, kNone), prev(n, kNone);
-  for (const auto& c : cand) {
-    if (next[c.from] != kNone || prev[c.to] != kNone) continue;
-    next[c.from] = c.to;
-    prev[c.to] = c.from;
-    if (c.d > 0) ++out.gaps_joined;
-  }
+  match(cand, next, prev);
+  for (uint32_t i = 0; i < n; ++i)
+    if (next[i] != kNone && dist(chains[i].back(), chains[next[i]].front()) > 0) ++out.gaps_joined;
+
+  // Cycles are done; paths (heads without a predecessor) go on to the second round.
   std::vector<char> done(n, 0);
-  auto emit = [&](uint32_t head, bool closed) {
-    Ring ring;
-    for (uint32_t c = head; c != kNone && !done[c]; c = next[c]) {
-      done[c] = 1;
-      ring.insert(ring.end(), chains[c].begin(), chains[c].end());
-    }
-    if (!closed) out.open.push_back({ring.back(), ring.front()});
-    loops.push_back(std::move(ring));
-  };
-  for (uint32_t i = 0; i < n; ++i)  // paths first: their heads have no predecessor
-    if (prev[i] == kNone) emit(i, false);
-  for (uint32_t i = 0; i < n; ++i)  // what is left are cycles
-    if (!done[i]) emit(i, true);
+  std::vector<Ring> paths;
+  for (uint32_t i = 0; i < n; ++i)
+    if (prev[i] == kNone) paths.push_back(follow(chains, next, i, done));
+  for (uint32_t i = 0; i < n; ++i)
+    if (!done[i]) loops.push_back(follow(chains, next, i, done));
+  if (paths.empty()) return;
+
+  const size_t k = paths.size();
+  std::vector<uint32_t> next2(k, kNone), prev2(k, kNone);
+  cand.clear();
+  if (k <= kMaxMatchedChains) {
+    for (uint32_t i = 0; i < k; ++i)
+      for (uint32_t j = 0; j < k; ++j) cand.push_back({dist(paths[i].back(), paths[j].front()), i, j});
+  } else {
+    for (uint32_t i = 0; i < k; ++i) cand.push_back({0, i, i});
+  }
+  match(cand, next2, prev2);
+  for (uint32_t i = 0; i < k; ++i) {
+    const Point& from = paths[i].back();
+    const Point& to = paths[next2[i]].front();
+    if (dist(from, to) > tol)
+      out.open.push_back({from, to});
+    else if (dist(from, to) > 0)
+      ++out.gaps_joined;
+  }
+  std::vector<char> done2(k, 0);
+  for (uint32_t i = 0; i < k; ++i)
+    if (!done2[i]) loops.push_back(follow(paths, next2, i, done2));
 }
 
 // Removes repeated consecutive points (a cut through a vertex can round onto its neighbour) and
@@ -296,8 +340,8 @@ Result<SliceStats> slice_mesh(const Mesh& mesh, const MeshTopology& topo, std::v
       report.warn(
           "open-loop",
           fmt::format("layer {} at ({:.3f}, {:.3f}) mm", layers[l].index, to_mm(o.end.X), to_mm(o.end.Y)),
-          fmt::format("open loop closed with a straight {:.3f} mm edge back to ({:.3f}, {:.3f}) mm; the mesh "
-                      "has a hole or a crack here",
+          fmt::format("open loop: a {:.3f} mm gap bridged with a straight edge to ({:.3f}, {:.3f}) mm; the "
+                      "mesh has a hole or a crack here",
                       dist(o.end, o.start) * kMmPerUnit, to_mm(o.start.X), to_mm(o.start.Y)));
   }
   return stats;

@@ -298,7 +298,28 @@ SCENARIO("an open mesh still yields every layer") {
       auto w = s.report.warnings();
       CHECK(w[0].where.rfind("layer 0 at (10.000, ", 0) == 0);
       CHECK(w[49].where.rfind("layer 49 at (", 0) == 0);
-      CHECK(w[0].message.find("10.000 mm edge") != std::string::npos);
+      CHECK(w[0].message.find("a 10.000 mm gap") != std::string::npos);
+    }
+  }
+  GIVEN("a box with both its +x and -x faces removed") {
+    Mesh m = box({10, 10, 10});
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (const auto& t : m.triangles) {
+      bool on_x = true;
+      for (auto v : t) on_x = on_x && m.vertices[v].x == m.vertices[t[0]].x;
+      if (!on_x) kept.push_back(t);
+    }
+    REQUIRE(kept.size() == 8);
+    m.triangles = kept;
+    Sliced s;
+    slice_all(m, s);
+    THEN("each layer's two walls are bridged to each other across both holes, not each on itself") {
+      REQUIRE(s.layers.size() == 50);
+      for (const auto& l : s.layers) {
+        CHECK(l.loops.size() == 1);
+        CHECK(layer_area(l) == doctest::Approx(100));
+      }
+      CHECK(s.report.count("open-loop") == 100);
     }
   }
   GIVEN("a cube whose +x face is detached by a 0.1 mm crack") {
@@ -359,4 +380,13 @@ TEST_CASE("progress is called once per layer") {
   REQUIRE(slice_mesh(box({10, 10, 10}), *plan, p, r).ok());
   CHECK(calls == 50);
   CHECK(max_seen == 50);
+}
+
+TEST_CASE("the union of nothing, or of loops without area, is empty") {
+  CHECK(union_nonzero({}).ok());
+  CHECK(union_nonzero({}).value().empty());
+  Rings flat{{{0, 0}, {5, 0}, {10, 0}}};
+  auto u = union_nonzero(flat);
+  REQUIRE(u.ok());
+  CHECK(u->empty());
 }
