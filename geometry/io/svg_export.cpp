@@ -51,15 +51,16 @@ void append_layer(fmt::memory_buffer& out, const Layer& layer, size_t slot, cons
   fmt::format_to(it,
                  "<g id=\"layer-{0}\" class=\"layer\" tranche:index=\"{0}\" tranche:z-bottom=\"{1}\" "
                  "tranche:z-top=\"{2}\" tranche:z-slice=\"{3}\" tranche:area=\"{4}\" tranche:islands=\"{5}\" "
-                 "transform=\"translate({6} {7})\">\n",
+                 "transform=\"translate({6:.4f} {7:.4f})\">\n",
                  layer.index, layer.z_bottom, layer.z_top, layer.z_slice(), area, layer.islands.size(), tx,
                  ty);
-  fmt::format_to(it, "<rect class=\"frame\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n",
+  fmt::format_to(it, "<rect class=\"frame\" x=\"{:.4f}\" y=\"{:.4f}\" width=\"{:.4f}\" height=\"{:.4f}\"/>\n",
                  min_x - s.pad * 0.9, -max_y - s.pad * 0.9 - s.caption, s.cell_w - 0.2 * s.pad,
                  s.cell_h - 0.2 * s.pad);
-  fmt::format_to(it, "<text class=\"caption\" x=\"{}\" y=\"{}\" font-size=\"{}\">#{} z {:.3f}</text>\n",
-                 min_x - s.pad * 0.4, -max_y - s.pad * 0.4 - s.caption * 0.25, s.caption * 0.7, layer.index,
-                 layer.z_top);
+  fmt::format_to(
+      it, "<text class=\"caption\" x=\"{:.4f}\" y=\"{:.4f}\" font-size=\"{:.4f}\">#{} z {:.3f}</text>\n",
+      min_x - s.pad * 0.4, -max_y - s.pad * 0.4 - s.caption * 0.25, s.caption * 0.7, layer.index,
+      layer.z_top);
   for (const auto& island : layer.islands) {
     fmt::format_to(it, "<path class=\"island\" tranche:area=\"{}\" fill-rule=\"evenodd\" d=\"",
                    island.area_mm2);
@@ -97,7 +98,7 @@ Status write_layers_svg(const std::string& path, const std::vector<Layer>& layer
                  "tranche:layers=\"{}\" tranche:source=\"",
                  kTrancheSvgNamespace, kLayersSvgVersion, layers.size());
   append_xml_escaped(head, source);
-  fmt::format_to(it, "\" viewBox=\"0 0 {} {}\">\n<title>", width, height);
+  fmt::format_to(it, "\" viewBox=\"0 0 {:.4f} {:.4f}\">\n<title>", width, height);
   append_xml_escaped(head, source);
   fmt::format_to(
       it,
