@@ -1,0 +1,258 @@
+// The --fill-angle-script hook: loading, calling, the context a script sees, and every error.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <thread>
+
+#include "geometry/fillangle/fill_angle.h"
+#include "tests/support/fixtures.h"
+
+using namespace tranche;
+
+namespace {
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Writes `source` to NAME in `dir` and returns its path.
+std::string write(const tranche::test::TempDir& dir, const std::string& name, const std::string& source) {
+  std::string path = (dir / name).string();
+  std::ofstream(path) << source;
+  return path;
+}
+
+geo::Polygon square(double x0, double y0, double size) {
+  geo::Polygon p;
+  p.outer = {geo::to_point(x0, y0), geo::to_point(x0 + size, y0), geo::to_point(x0 + size, y0 + size),
+             geo::to_point(x0, y0 + size)};
+  return p;
+}
+
+// Three layers: one island, then two (the second with a hole), then one.
+std::vector<geo::Layer> layers() {
+  std::vector<geo::Layer> ls(3);
+  for (int i = 0; i < 3; ++i) {
+    ls[static_cast<size_t>(i)].index = i;
+    ls[static_cast<size_t>(i)].z_bottom = 0.2 * i;
+    ls[static_cast<size_t>(i)].z_top = 0.2 * (i + 1);
+  }
+  auto add = [](geo::Layer& l, geo::Polygon p) {
+    l.islands.push_back({p, geo::area_mm2(p), std::nan(""), {}});
+  };
+  add(ls[0], square(0, 0, 10));
+  add(ls[1], square(0, 0, 10));
+  geo::Polygon holed = square(20, 0, 10);
+  holed.holes.push_back(
+      {geo::to_point(22, 2), geo::to_point(22, 4), geo::to_point(24, 4), geo::to_point(24, 2)});
+  add(ls[1], holed);
+  add(ls[2], square(1, 2, 3));
+  return ls;
+}
+
+// Loads `source` as a script and returns the angle for island `island` of layer `layer`.
+Result<double> angle_of(const std::string& source, int layer = 1, int island = 1) {
+  tranche::test::TempDir dir("fill-angle");
+  auto script = geo::FillAngleScript::load(write(dir, "angle.py", source));
+  if (!script) return script.error();
+  auto ls = layers();
+  geo::FillAngleContext c;
+  c.layer_index = layer;
+  c.layer_count = static_cast<int>(ls.size());
+  const geo::Layer& l = ls[static_cast<size_t>(layer)];
+  c.z = l.z_top;
+  c.z_bottom = l.z_bottom;
+  c.island_index = island;
+  c.island_count = static_cast<int>(l.islands.size());
+  c.area = l.islands[static_cast<size_t>(island)].area_mm2;
+  c.shape = &l.islands[static_cast<size_t>(island)].shape;
+  return (*script)->angle(c);
+}
+
+}  // namespace
+
+TEST_CASE("default fill angle alternates 45 and 135 degrees") {
+  CHECK(geo::default_fill_angle_deg(0) == 45);
+  CHECK(geo::default_fill_angle_deg(1) == 135);
+  CHECK(geo::default_fill_angle_deg(10) == 45);
+}
+
+TEST_CASE("fill-angle script: a missing file is an error naming it") {
+  auto s = geo::FillAngleScript::load("/nonexistent/angle.py");
+  REQUIRE_FALSE(s.ok());
+  CHECK(s.error().where == "/nonexistent/angle.py");
+  CHECK(contains(s.error().message, "cannot open"));
+}
+
+TEST_CASE("fill-angle script: built with Python") {
+  // The build embeds Python whenever pybind11 is found; a build without it must say so instead.
+  if (!geo::FillAngleScript::available()) {
+    tranche::test::TempDir dir("fill-angle");
+    auto s = geo::FillAngleScript::load(write(dir, "a.py", "def fill_angle(ctx): return 0\n"));
+    REQUIRE_FALSE(s.ok());
+    CHECK(contains(s.error().message, "built without Python"));
+    return;
+  }
+  SUBCASE("a constant, for every island of every layer") {
+    tranche::test::TempDir dir("fill-angle");
+    auto script = geo::FillAngleScript::load(write(dir, "const.py", "def fill_angle(ctx):\n    return 30\n"));
+    REQUIRE_MESSAGE(script.ok(), script.error().to_string());
+    auto ls = layers();
+    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
+    for (const auto& l : ls)
+      for (const auto& i : l.islands) CHECK(i.fill_angle_deg == 30);
+  }
+  SUBCASE("one using the layer index and the default") {
+    tranche::test::TempDir dir("fill-angle");
+    auto script = geo::FillAngleScript::load(write(
+        dir, "helicoid.py", "def fill_angle(ctx):\n    return 15.0 * ctx.layer_index + ctx.default_angle\n"));
+    REQUIRE(script.ok());
+    auto ls = layers();
+    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
+    CHECK(ls[0].islands[0].fill_angle_deg == 45);
+    CHECK(ls[1].islands[0].fill_angle_deg == 150);
+    CHECK(ls[1].islands[1].fill_angle_deg == 150);
+    CHECK(ls[2].islands[0].fill_angle_deg == 75);
+  }
+  SUBCASE("the context fields") {
+    // Layer 1, island 1: the square (20, 0)-(30, 10) with a 2 x 2 hole; z from 0.2 to 0.4.
+    struct Case {
+      const char* expr;
+      double want;
+    };
+    for (Case c : {Case{"ctx.layer_index", 1},
+                   Case{"ctx.layer_count", 3},
+                   Case{"ctx.z", 0.4},
+                   Case{"ctx.z_bottom", 0.2},
+                   Case{"ctx.layer_height", 0.2},
+                   Case{"ctx.island_index", 1},
+                   Case{"ctx.island_count", 2},
+                   Case{"ctx.area", 96},
+                   Case{"ctx.bbox[0]", 20},
+                   Case{"ctx.bbox[1]", 0},
+                   Case{"ctx.bbox[2]", 30},
+                   Case{"ctx.bbox[3]", 10},
+                   Case{"len(ctx.outer)", 4},
+                   Case{"ctx.outer[1][0]", 30},
+                   Case{"ctx.outer[2][1]", 10},
+                   Case{"len(ctx.holes)", 1},
+                   Case{"len(ctx.holes[0])", 4},
+                   Case{"ctx.holes[0][2][0]", 24},
+                   Case{"ctx.default_angle", 135},
+                   Case{"isinstance(ctx.layer_index, int) and isinstance(ctx.z, float)", 1}}) {
+      CAPTURE(c.expr);
+      auto a = angle_of(std::string("def fill_angle(ctx):\n    return float(") + c.expr + ")\n");
+      REQUIRE_MESSAGE(a.ok(), a.error().to_string());
+      CHECK(*a == doctest::Approx(c.want));
+    }
+    // The outer ring is counter-clockwise (positive shoelace area), the hole clockwise.
+    auto orient = angle_of(
+        "def area(r):\n"
+        "    return sum(r[i][0] * r[(i + 1) % len(r)][1] - r[(i + 1) % len(r)][0] * r[i][1] for i in "
+        "range(len(r))) / 2\n"
+        "def fill_angle(ctx):\n"
+        "    return area(ctx.outer) + area(ctx.holes[0])\n");
+    REQUIRE(orient.ok());
+    CHECK(*orient == doctest::Approx(96));
+  }
+  SUBCASE("numbers of other numeric types, negative and large angles are accepted") {
+    CHECK(*angle_of("import fractions\ndef fill_angle(ctx):\n    return fractions.Fraction(1, 4)\n") == 0.25);
+    CHECK(*angle_of("def fill_angle(ctx):\n    return -720\n") == -720);
+  }
+  SUBCASE("a script may import modules beside it") {
+    tranche::test::TempDir dir("fill-angle");
+    write(dir, "helper_mod_xyz.py", "ANGLE = 12.5\n");
+    auto script = geo::FillAngleScript::load(write(
+        dir, "main.py", "import helper_mod_xyz\ndef fill_angle(ctx):\n    return helper_mod_xyz.ANGLE\n"));
+    REQUIRE_MESSAGE(script.ok(), script.error().to_string());
+    auto ls = layers();
+    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
+    CHECK(ls[2].islands[0].fill_angle_deg == 12.5);
+  }
+  SUBCASE("an exception gives the traceback, the script line and the island") {
+    tranche::test::TempDir dir("fill-angle");
+    std::string path =
+        write(dir, "raise.py",
+              "def helper(x):\n    return x / 0\n\ndef fill_angle(ctx):\n    return helper(ctx.area)\n");
+    auto script = geo::FillAngleScript::load(path);
+    REQUIRE(script.ok());
+    auto ls = layers();
+    Status s = geo::apply_fill_angle_script(**script, ls);
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.error().where == path + ":2");  // the innermost frame in the script
+    CHECK(contains(s.error().message, "raised an exception on layer 0, island 0"));
+    CHECK(contains(s.error().message, "Traceback (most recent call last)"));
+    CHECK(contains(s.error().message, "line 5, in fill_angle"));
+    CHECK(contains(s.error().message, "ZeroDivisionError: float division by zero"));
+  }
+  SUBCASE("a wrong return type, NaN or infinity is an error naming the island") {
+    struct Case {
+      const char* ret;
+      const char* part;
+    };
+    for (Case c : {Case{"'45'", "returned str '45' on layer 1, island 1: it must return a number"},
+                   Case{"None", "returned NoneType None"}, Case{"True", "returned bool True"},
+                   Case{"[45]", "returned list [45]"},
+                   Case{"float('nan')",
+                        "returned nan on layer 1, island 1: it must "
+                        "return a finite number"},
+                   Case{"float('inf')", "returned inf"}, Case{"10 ** 400", "int too large"}}) {
+      CAPTURE(c.ret);
+      auto a = angle_of(std::string("def fill_angle(ctx):\n    return ") + c.ret + "\n");
+      REQUIRE_FALSE(a.ok());
+      CHECK_MESSAGE(contains(a.error().message, c.part), a.error().message);
+    }
+  }
+  SUBCASE("a missing function, or one that is not callable") {
+    auto a = angle_of("def fill_anglez(ctx):\n    return 1\n");
+    REQUIRE_FALSE(a.ok());
+    CHECK(contains(a.error().message, "defines no function fill_angle(ctx)"));
+    a = angle_of("fill_angle = 45\n");
+    REQUIRE_FALSE(a.ok());
+    CHECK(contains(a.error().message, "fill_angle is not a function (its type is int)"));
+  }
+  SUBCASE("a syntax error is reported at file:line:col") {
+    tranche::test::TempDir dir("fill-angle");
+    std::string path =
+        write(dir, "bad.py", "# a comment\ndef fill_angle(ctx):\n    return (ctx.layer_index +\n");
+    auto s = geo::FillAngleScript::load(path);
+    REQUIRE_FALSE(s.ok());
+    CHECK(contains(s.error().where, path + ":3:"));
+    CHECK(contains(s.error().message, "syntax error"));
+    path = write(dir, "bad2.py", "def fill_angle(ctx)\n    return 1\n");
+    s = geo::FillAngleScript::load(path);
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.error().where == path + ":1:20");
+    CHECK(contains(s.error().message, "syntax error: expected ':'"));
+    CHECK(contains(s.error().message, "def fill_angle(ctx)\n                       ^"));
+  }
+  SUBCASE("an exception while loading the script") {
+    tranche::test::TempDir dir("fill-angle");
+    std::string path =
+        write(dir, "load.py", "import no_such_module_tranche\ndef fill_angle(ctx):\n    return 1\n");
+    auto s = geo::FillAngleScript::load(path);
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.error().where == path + ":1");
+    CHECK(contains(s.error().message, "failed while loading"));
+    CHECK(contains(s.error().message, "ModuleNotFoundError: No module named 'no_such_module_tranche'"));
+  }
+  SUBCASE("calls from several threads at once are safe") {
+    tranche::test::TempDir dir("fill-angle");
+    auto script = geo::FillAngleScript::load(write(
+        dir, "threads.py", "def fill_angle(ctx):\n    return ctx.layer_index * 1000 + ctx.island_index\n"));
+    REQUIRE(script.ok());
+    geo::FillAngleScript& sc = **script;
+    geo::Polygon sq = square(0, 0, 1);
+    std::vector<int> bad(4, 0);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+      threads.emplace_back([&, t] {
+        for (int k = 0; k < 200; ++k) {
+          geo::FillAngleContext c;
+          c.layer_index = t, c.island_index = k, c.shape = &sq;
+          auto a = sc.angle(c);
+          if (!a || *a != t * 1000 + k) ++bad[static_cast<size_t>(t)];
+        }
+      });
+    for (auto& th : threads) th.join();
+    CHECK(bad == std::vector<int>(4, 0));
+  }
+}
