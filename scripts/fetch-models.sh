@@ -17,7 +17,8 @@ mkdir -p "$(dirname "$dest")" || { echo "fetch-models: cannot create $(dirname "
 work=$(mktemp -d "$(dirname "$dest")/.fetch-XXXXXX") || exit 0
 trap 'rm -rf "$work"' EXIT
 # npm pack prints the tarball name last; --silent keeps warnings about the user's npmrc out of it.
-if ! tarball=$(cd "$work" && timeout 120 npm pack "$pkg" --silent 2>"$work/npm.log" | tail -1) || [[ -z "$tarball" ]] \
+if ! tarball=$(cd "$work" && timeout 120 npm pack "$pkg" --silent --fetch-retries=1 \
+     --fetch-retry-mintimeout=2000 --fetch-retry-maxtimeout=5000 --fetch-timeout=30000 2>"$work/npm.log" | tail -1) || [[ -z "$tarball" ]] \
    || [[ ! -f "$work/$tarball" ]]; then
   echo "fetch-models: could not download $pkg from the npm registry (offline?); the STL corpus test will be skipped"
   tail -3 "$work/npm.log" 2>/dev/null | sed 's/^/fetch-models:   /'
