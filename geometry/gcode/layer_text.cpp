@@ -1,0 +1,338 @@
+#include "geometry/gcode/layer_text.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "geometry/gcode/numbers.h"
+#include "geometry/toolpath/context_fill.h"
+#include "geometry/toolpath/flow.h"
+#include "geometry/toolpath/walk.h"
+
+namespace tranche::gcode {
+
+using schema::Flavor;
+using schema::Level;
+using schema::PathKind;
+using schema::PropId;
+using toolpath::CellPlan;
+using toolpath::IslandPlan;
+using toolpath::LayerPlan;
+using toolpath::Op;
+using toolpath::PathPlan;
+
+std::string fan_command(Flavor flavor, double ratio) {
+  ratio = std::clamp(ratio, 0.0, 1.0);
+  if (flavor == Flavor::RepRapFirmware) {
+    std::string s = "M106 P0 S";
+    append_fixed(s, std::llround(ratio * 100), 2);
+    return s;
+  }
+  if (ratio <= 0) return "M107";
+  std::string s = "M106 S";
+  append_int(s, std::lround(ratio * 255));
+  return s;
+}
+
+namespace {
+
+std::string_view type_name(PathKind k) {
+  switch (k) {
+    case PathKind::OuterPerimeter:
+      return "External perimeter";
+    case PathKind::InnerPerimeter:
+      return "Perimeter";
+    case PathKind::Infill:
+      return "Internal infill";
+    case PathKind::SolidInfill:
+      return "Solid infill";
+    case PathKind::TopSolid:
+      return "Top solid infill";
+    case PathKind::BottomSolid:
+      return "Solid infill";
+    case PathKind::Bridge:
+      return "Bridge infill";
+    case PathKind::Skirt:
+      return "Skirt/Brim";
+    case PathKind::Ironing:
+      return "Ironing";
+    case PathKind::Custom:
+      return "Custom";
+  }
+  return "Custom";
+}
+
+class Formatter final : public ctx::LineSink {
+ public:
+  Formatter(const toolpath::PrintSetup& s, const LayerPlan& plan) : S(s), plan_(plan), ctx_(s.print_ctx) {
+    const auto& P = s.print_props;
+    relative_ = P[PropId::RelativeE] != 0;
+    retract_ = std::llround(P[PropId::RetractLength] * 1e5);
+    retract_f_ = std::lround(P[PropId::RetractSpeed] * 60);
+    travel_f_ = std::lround(P[PropId::TravelSpeed] * 60);
+    lift_ = P[PropId::RetractLift];
+    before_ = P[PropId::RetractBeforeTravel];
+    filament_area_ = toolpath::filament_area_mm2(P[PropId::FilamentDiameter]);
+    height_ = plan.height;
+    z_um_ = std::llround(plan.z * 1000);
+    exec_ = s.rules.executors;
+    out_.text.reserve(1 << 16);
+  }
+
+  Result<LayerText> run() {
+    toolpath::set_layer_fields(ctx_, plan_, static_cast<int>(plan_.islands.size()));
+    ctx_.set(schema::FieldId::LayerTime, plan_.time_s);
+    ctx_.set_props(&plan_.props);
+    if (exec_) islands_view_.bind(ctx_, plan_.islands);
+    auto& t = out_.text;
+    t += ";LAYER_CHANGE\n;Z:";
+    append_fixed(t, z_um_, 3);
+    t += "\n;HEIGHT:";
+    append_fixed(t, std::llround(plan_.height * 1000), 3);
+    t += "\n;LAYER:";
+    append_int(t, plan_.index);
+    t += '\n';
+    hook(Level::Layer, ctx::When::Before);
+    mark(LayerText::Mark::Kind::NozzleTemp, plan_.props[PropId::NozzleTemp]);
+    mark(LayerText::Mark::Kind::BedTemp, plan_.props[PropId::BedTemp]);
+    t += "G92 E0\n";
+    if (retract_ > 0) {
+      t += "G1 E";
+      append_fixed(t, -retract_, 5);
+      t += " F";
+      append_int(t, retract_f_);
+      t += '\n';
+      e_int_ = -retract_;
+      retracted_ = true;
+      ++out_.retractions;
+    }
+    t += "G1 Z";
+    append_fixed(t, z_um_ + (retracted_ && lift_ > 0 ? std::llround(lift_ * 1000) : 0), 3);
+    t += " F";
+    append_int(t, travel_f_);
+    t += '\n';
+    lifted_ = retracted_ && lift_ > 0;
+    f_ = travel_f_;
+    toolpath::walk_layer(plan_, *this);
+    ctx_.clear_from(Level::Island);
+    ctx_.set_props(&plan_.props);
+    hook(Level::Layer, ctx::When::After);
+    if (!status_) return status_.error();
+    out_.e_mm = e_exact_;
+    out_.last = pos_;
+    return std::move(out_);
+  }
+
+  // LineSink: executor output.
+  void line(std::string_view text) override {
+    out_.text.append(text);
+    out_.text.push_back('\n');
+  }
+
+  // walk_layer visitor.
+  void island_begin(const IslandPlan& ip) {
+    ctx_.clear_from(Level::Island);
+    toolpath::set_island_fields(ctx_, ip);
+    ctx_.set_props(&ip.props);
+    hook(Level::Island, ctx::When::Before);
+  }
+  void island_end(const IslandPlan& ip) {
+    ctx_.clear_from(Level::Cell);
+    toolpath::set_island_fields(ctx_, ip);
+    ctx_.set_props(&ip.props);
+    hook(Level::Island, ctx::When::After);
+  }
+  void cell_begin(const IslandPlan& ip, const CellPlan& c) {
+    ctx_.clear_from(Level::Cell);
+    toolpath::set_cell_fields(ctx_, c);
+    ctx_.set_props(&ip.props);
+    hook(Level::Cell, ctx::When::Before);
+  }
+  void cell_end(const IslandPlan& ip, const CellPlan& c) {
+    ctx_.clear_from(Level::Cell);
+    toolpath::set_cell_fields(ctx_, c);
+    ctx_.set_props(&ip.props);
+    hook(Level::Cell, ctx::When::After);
+  }
+  void path_begin(const IslandPlan*, const PathPlan& p) {
+    if (!exec_) return;
+    ctx_.clear_from(Level::Path);
+    toolpath::set_path_fields(ctx_, p);
+    ctx_.set_props(&p.props);
+    if (exec_->has(Level::Path, ctx::When::Before) || exec_->has(Level::Path, ctx::When::After))
+      path_view_.bind(ctx_, p, S.shift);
+    hook(Level::Path, ctx::When::Before);
+  }
+  void path_end(const IslandPlan*, const PathPlan& p) {
+    if (!exec_) return;
+    ctx_.set_props(&p.props);
+    hook(Level::Path, ctx::When::After);
+  }
+  void path_default(const IslandPlan*, const PathPlan& p) {
+    if (p.pts.empty()) return;
+    fan(p.fan);
+    if (!has_pos_ || pos_ != p.pts.front()) travel(p.pts.front(), p.retract || !has_pos_);
+    type(p.kind, p.width);
+    double epm = toolpath::bead_area_mm2(p.width, height_) * p.flow_scale / filament_area_;
+    for (size_t i = 0; i < p.piece_count(); ++i) {
+      const auto& pc = p.piece(i);
+      extrude(p.pts[i + 1], pc.speed, epm * pc.flow);
+    }
+  }
+  void op(const IslandPlan*, const PathPlan* p, const Op& o) {
+    switch (o.kind) {
+      case Op::Kind::Text:
+        line(o.text);
+        break;
+      case Op::Kind::Travel: {
+        double len =
+            has_pos_ ? std::hypot(double(o.to.X - pos_.X), double(o.to.Y - pos_.Y)) * geo::kMmPerUnit : 1e9;
+        travel(o.to, len > before_);
+        break;
+      }
+      case Op::Kind::Extrude:
+        if (p) fan(p->fan);
+        if (!has_pos_) travel(o.to, true);
+        type(p ? p->kind : PathKind::Custom, o.width);
+        extrude(o.to, o.speed, toolpath::bead_area_mm2(o.width, height_) * o.flow / filament_area_);
+        break;
+      case Op::Kind::Default:
+        break;
+    }
+  }
+
+ private:
+  void hook(Level level, ctx::When when) {
+    if (!exec_ || !status_ || !exec_->has(level, when)) return;
+    status_ = exec_->run(level, when, ctx_, *this);
+  }
+  void mark(LayerText::Mark::Kind k, double v) { out_.marks.push_back({out_.text.size(), k, v}); }
+  void fan(double v) {
+    if (v == fan_) return;
+    fan_ = v;
+    mark(LayerText::Mark::Kind::Fan, v);
+  }
+  void type(PathKind k, float width) {
+    auto& t = out_.text;
+    if (k != type_ || !has_type_) {
+      t += ";TYPE:";
+      t += type_name(k);
+      t += '\n';
+      type_ = k;
+      has_type_ = true;
+    }
+    if (width != width_) {
+      t += ";WIDTH:";
+      append_fixed(t, std::llround(width * 1000.0), 3);
+      t += '\n';
+      width_ = width;
+    }
+  }
+  void xy(const geo::Point& p) {
+    auto& t = out_.text;
+    t += " X";
+    append_fixed(t, round_div(p.X + S.shift.X, 1000), 3);
+    t += " Y";
+    append_fixed(t, round_div(p.Y + S.shift.Y, 1000), 3);
+  }
+  static int64_t round_div(int64_t v, int64_t d) { return v >= 0 ? (v + d / 2) / d : -((-v + d / 2) / d); }
+  void e_word(int64_t new_int) {
+    auto& t = out_.text;
+    t += " E";
+    append_fixed(t, relative_ ? new_int - e_int_ : new_int, 5);
+    e_int_ = new_int;
+  }
+  void travel(const geo::Point& to, bool retract) {
+    auto& t = out_.text;
+    if (retract && !retracted_ && retract_ > 0) {
+      t += "G1";
+      e_word(e_int_ - retract_);
+      t += " F";
+      append_int(t, retract_f_);
+      t += '\n';
+      retracted_ = true;
+      ++out_.retractions;
+      f_ = retract_f_;
+      if (lift_ > 0) {
+        t += "G1 Z";
+        append_fixed(t, z_um_ + std::llround(lift_ * 1000), 3);
+        t += '\n';
+        lifted_ = true;
+      }
+    }
+    t += "G1";
+    xy(to);
+    if (f_ != travel_f_) {
+      t += " F";
+      append_int(t, travel_f_);
+      f_ = travel_f_;
+    }
+    t += '\n';
+    if (!out_.any_move) out_.first = to;
+    out_.any_move = true;
+    ++out_.travels;
+    pos_ = to;
+    has_pos_ = true;
+  }
+  void extrude(const geo::Point& to, double speed, double e_per_mm) {
+    auto& t = out_.text;
+    if (lifted_) {
+      t += "G1 Z";
+      append_fixed(t, z_um_, 3);
+      t += '\n';
+      lifted_ = false;
+    }
+    if (retracted_) {
+      t += "G1";
+      e_word(e_int_ + retract_);
+      t += " F";
+      append_int(t, retract_f_);
+      t += '\n';
+      f_ = retract_f_;
+      retracted_ = false;
+    }
+    double len = std::hypot(double(to.X - pos_.X), double(to.Y - pos_.Y)) * geo::kMmPerUnit;
+    e_exact_ += len * e_per_mm;
+    int64_t delta = std::llround(e_exact_ * 1e5) - e_sent_;
+    e_sent_ += delta;
+    t += "G1";
+    xy(to);
+    e_word(e_int_ + delta);
+    int64_t f = std::lround(speed * 60);
+    if (f != f_) {
+      t += " F";
+      append_int(t, f);
+      f_ = f;
+    }
+    t += '\n';
+    pos_ = to;
+  }
+
+  const toolpath::PrintSetup& S;
+  const LayerPlan& plan_;
+  ctx::Context ctx_;
+  toolpath::PathView path_view_;
+  toolpath::IslandsView islands_view_;
+  const ctx::Executors* exec_ = nullptr;
+  Status status_ = ok_status();
+  LayerText out_;
+  bool relative_ = false, retracted_ = false, lifted_ = false, has_pos_ = false, has_type_ = false;
+  int64_t retract_ = 0, retract_f_ = 0, travel_f_ = 0, f_ = -1, z_um_ = 0;
+  int64_t e_int_ = 0;   // absolute E since the layer's G92 E0, 1e-5 mm (relative mode writes its steps)
+  int64_t e_sent_ = 0;  // extrusion written so far, 1e-5 mm
+  double e_exact_ = 0;  // extrusion so far, mm, unrounded
+  double lift_ = 0, before_ = 0, filament_area_ = 1, height_ = 0.2;
+  double fan_ = -1;
+  PathKind type_ = PathKind::Custom;
+  float width_ = -1;
+  geo::Point pos_;
+};
+
+}  // namespace
+
+Result<LayerText> format_layer(const toolpath::PrintSetup& setup, const LayerPlan& plan) {
+  Formatter f(setup, plan);
+  return f.run();
+}
+
+}  // namespace tranche::gcode

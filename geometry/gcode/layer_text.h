@@ -1,0 +1,36 @@
+// Writes one layer plan as G-code text, in parallel with other layers. The text is
+// self-contained: it starts with `G92 E0` and the layer-change retraction, so it does not depend
+// on the previous layer's E or position. Commands that depend on the state the previous layer
+// left (fan, temperatures) are marks, resolved in order by the print writer, which emits them
+// only when the value changes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/toolpath/layer_loop.h"
+#include "geometry/toolpath/plan.h"
+
+namespace tranche::gcode {
+
+struct LayerText {
+  struct Mark {
+    enum class Kind : uint8_t { Fan, NozzleTemp, BedTemp };
+    size_t offset;  // insert before text[offset]
+    Kind kind;
+    double value;  // ratio for the fan, °C for temperatures
+  };
+  std::string text;
+  std::vector<Mark> marks;
+  double e_mm = 0;  // filament fed, mm (retractions excluded)
+  bool any_move = false;
+  geo::Point first, last;  // model units: where the layer's first travel goes, where it ends
+  int travels = 0, retractions = 0;
+};
+
+// G-code words for the flavour's fan command (ratio 0..1): "M106 S255", "M107", "M106 P0 S0.5".
+std::string fan_command(schema::Flavor flavor, double ratio);
+
+Result<LayerText> format_layer(const toolpath::PrintSetup& setup, const toolpath::LayerPlan& plan);
+
+}  // namespace tranche::gcode

@@ -1,0 +1,45 @@
+// The print level of the slicing loop: decides the print's properties once, then runs every
+// layer through plan (parallel) → G-code text (parallel) → file (in order) with TBB's
+// pipeline, so only a few layers' toolpaths exist at a time, and writes the header, the
+// start/end templates and the footer. The file appears only when complete (OutputFile).
+#pragma once
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/core/layer.h"
+#include "runtime/base/report.h"
+#include "runtime/base/result.h"
+#include "runtime/context/hooks.h"
+
+namespace tranche::gcode {
+
+struct GcodeJob {
+  std::string output;                  // destination file
+  std::span<const geo::Layer> layers;  // every layer, islands resolved
+  ctx::Rules rules;                    // cascade (defaults, rules, --set), executors, replacers
+  std::string model_name;
+  double model_volume_mm3 = 0;                            // for print.volume
+  std::vector<std::pair<std::string, std::string>> sets;  // --set as given, for the header
+  std::string stdlib;                                     // empty: stdlib_dir()
+  int threads = 0;                                        // 0: TBB's default
+};
+
+struct GcodeSummary {
+  int layers = 0;
+  double filament_mm = 0, filament_cm3 = 0, filament_g = 0;
+  double time_s = 0;
+  int travels = 0, retractions = 0;
+};
+
+// Filament density used for the weight estimate, g/cm³ (PLA).
+inline constexpr double kFilamentDensity = 1.24;
+
+Result<GcodeSummary> write_gcode(const GcodeJob& job, Report& report);
+
+// "1d 2h 3m 4s" / "27m 8s" / "8s", as PrusaSlicer writes it.
+std::string format_duration(double seconds);
+
+}  // namespace tranche::gcode

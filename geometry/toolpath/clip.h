@@ -1,0 +1,31 @@
+// Thin wrappers over Clipper for the polygon operations toolpaths need, on flat ring lists
+// (outer rings counter-clockwise, holes clockwise, non-zero fill). Distances in mm.
+#pragma once
+
+#include "geometry/core/geom.h"
+
+namespace tranche::toolpath {
+
+// Grows (mm > 0) or shrinks (mm < 0) closed regions with round joins: the exact Minkowski
+// sum/difference with a disc, up to the arc tolerance (5 µm).
+geo::Rings offset(const geo::Rings& region, double mm);
+// Shrinks by `mm`, then grows back by `open_mm`: removes parts narrower than 2·open_mm.
+geo::Rings offset_open(const geo::Rings& region, double mm, double open_mm);
+// The area within `mm` of closed lines (each ring taken as a loop of centreline).
+geo::Rings buffer_loops(const geo::Rings& loops, double mm);
+
+geo::Rings intersection(const geo::Rings& a, const geo::Rings& b);
+geo::Rings difference(const geo::Rings& a, const geo::Rings& b);
+geo::Rings union_of(const geo::Rings& a, const geo::Rings& b = {});
+
+// Area in mm² of a ring list under non-zero fill (outer positive, holes negative).
+double area_mm2(const geo::Rings& rings);
+// Rings whose bounding box meets `box` (others cannot change a boolean result inside it).
+geo::Rings near(const geo::Rings& rings, const geo::BBox2& box);
+geo::BBox2 bbox(const geo::Rings& rings);
+// Drops vertices closer than `tol` units to the chord of their neighbours (Douglas-Peucker per
+// ring); rings that collapse below 3 vertices are removed.
+geo::Rings simplify(const geo::Rings& rings, geo::coord_t tol);
+geo::Ring simplify(const geo::Ring& ring, geo::coord_t tol);
+
+}  // namespace tranche::toolpath

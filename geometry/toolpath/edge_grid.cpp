@@ -1,0 +1,207 @@
+#include "geometry/toolpath/edge_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tranche::toolpath {
+
+using geo::coord_t;
+using geo::Point;
+
+__extension__ typedef __int128 i128;
+
+int orient(const Point& a, const Point& b, const Point& c) {
+  i128 v = static_cast<i128>(b.X - a.X) * (c.Y - a.Y) - static_cast<i128>(b.Y - a.Y) * (c.X - a.X);
+  return v > 0 ? 1 : v < 0 ? -1 : 0;
+}
+
+namespace {
+bool on_segment(const Point& a, const Point& b, const Point& p) {
+  return std::min(a.X, b.X) <= p.X && p.X <= std::max(a.X, b.X) && std::min(a.Y, b.Y) <= p.Y &&
+         p.Y <= std::max(a.Y, b.Y);
+}
+}  // namespace
+
+bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& d) {
+  if (std::max(a.X, b.X) < std::min(c.X, d.X) || std::max(c.X, d.X) < std::min(a.X, b.X) ||
+      std::max(a.Y, b.Y) < std::min(c.Y, d.Y) || std::max(c.Y, d.Y) < std::min(a.Y, b.Y))
+    return false;
+  int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (o1 != o2 && o3 != o4) return true;
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
+  geo::BBox2 box;
+  size_t n = 0;
+  for (const auto& r : rings) {
+    for (const auto& p : r) box.add(p);
+    n += r.size();
+  }
+  if (n == 0) return;
+  edges_.reserve(n);
+  for (const auto& r : rings)
+    for (size_t i = 0; i < r.size(); ++i) edges_.push_back({r[i], r[(i + 1) % r.size()]});
+  double w = static_cast<double>(box.max_x - box.min_x) + 1,
+         h = static_cast<double>(box.max_y - box.min_y) + 1;
+  if (cell <= 0) {
+    // About two edges per occupied cell: pitch from the mean edge length and the extent.
+    double total = 0;
+    for (const auto& e : edges_) total += std::abs(double(e.b.X - e.a.X)) + std::abs(double(e.b.Y - e.a.Y));
+    double mean = total / static_cast<double>(edges_.size());
+    double by_area = std::sqrt(w * h / static_cast<double>(edges_.size()));
+    cell = static_cast<coord_t>(std::max({mean * 2.0, by_area, 1000.0}));
+  }
+  cell_ = cell;
+  x0_ = box.min_x;
+  y0_ = box.min_y;
+  nx_ = static_cast<int>(w / static_cast<double>(cell_)) + 1;
+  ny_ = static_cast<int>(h / static_cast<double>(cell_)) + 1;
+  size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
+  std::vector<uint32_t> count(cells + 1, 0);
+  auto each_cell = [&](const Edge& e, auto&& f) {
+    visit_segment_cells(e.a, e.b, [&](int x, int y) { f(static_cast<size_t>(y) * nx_ + x); });
+  };
+  for (const auto& e : edges_) each_cell(e, [&](size_t c) { ++count[c + 1]; });
+  for (size_t i = 1; i <= cells; ++i) count[i] += count[i - 1];
+  start_ = count;
+  items_.resize(count[cells]);
+  for (uint32_t i = 0; i < edges_.size(); ++i)
+    each_cell(edges_[i], [&](size_t c) { items_[count[c]++] = i; });
+}
+
+int EdgeGrid::cx(coord_t x) const {
+  return static_cast<int>(std::clamp<coord_t>((x - x0_) / cell_, 0, nx_ - 1));
+}
+int EdgeGrid::cy(coord_t y) const {
+  return static_cast<int>(std::clamp<coord_t>((y - y0_) / cell_, 0, ny_ - 1));
+}
+
+// Every cell the segment passes through (a conservative supercover: per column, the rows
+// between the segment's y at the column's two sides).
+template <class F>
+void EdgeGrid::visit_segment_cells(const Point& a, const Point& b, F&& f) const {
+  Point p = a, q = b;
+  if (p.X > q.X) std::swap(p, q);
+  int c0 = cx(p.X), c1 = cx(q.X);
+  double dx = static_cast<double>(q.X - p.X), dy = static_cast<double>(q.Y - p.Y);
+  for (int c = c0; c <= c1; ++c) {
+    double xa = std::max<double>(static_cast<double>(p.X), static_cast<double>(x0_ + coord_t(c) * cell_));
+    double xb = std::min<double>(static_cast<double>(q.X), static_cast<double>(x0_ + coord_t(c + 1) * cell_));
+    double ya, yb;
+    if (dx == 0) {
+      ya = static_cast<double>(p.Y);
+      yb = static_cast<double>(q.Y);
+    } else {
+      ya = static_cast<double>(p.Y) + dy * (xa - static_cast<double>(p.X)) / dx;
+      yb = static_cast<double>(p.Y) + dy * (xb - static_cast<double>(p.X)) / dx;
+    }
+    if (ya > yb) std::swap(ya, yb);
+    int r0 = cy(static_cast<coord_t>(std::floor(ya)) - 1), r1 = cy(static_cast<coord_t>(std::ceil(yb)) + 1);
+    for (int r = r0; r <= r1; ++r) f(c, r);
+  }
+}
+
+bool EdgeGrid::crosses(const Point& a, const Point& b) const {
+  if (edges_.empty()) return false;
+  bool hit = false;
+  visit_segment_cells(a, b, [&](int x, int y) {
+    if (hit) return;
+    size_t c = static_cast<size_t>(y) * nx_ + x;
+    for (uint32_t k = start_[c]; k < start_[c + 1] && !hit; ++k) {
+      const Edge& e = edges_[items_[k]];
+      hit = segments_meet(a, b, e.a, e.b);
+    }
+  });
+  return hit;
+}
+
+bool EdgeGrid::along(const Point& a, const Point& b, coord_t tol) const {
+  if (edges_.empty()) return false;
+  Point m((a.X + b.X) / 2, (a.Y + b.Y) / 2);
+  int mx = cx(m.X), my = cy(m.Y);
+  double t2 = static_cast<double>(tol) * static_cast<double>(tol);
+  auto dist2_line = [](const Edge& e, const Point& p) {
+    double ex = double(e.b.X - e.a.X), ey = double(e.b.Y - e.a.Y);
+    double len2 = ex * ex + ey * ey;
+    double cr = ex * double(p.Y - e.a.Y) - ey * double(p.X - e.a.X);
+    return len2 > 0 ? cr * cr / len2
+                    : double(p.X - e.a.X) * double(p.X - e.a.X) + double(p.Y - e.a.Y) * double(p.Y - e.a.Y);
+  };
+  for (int y = std::max(0, my - 1); y <= std::min(ny_ - 1, my + 1); ++y)
+    for (int x = std::max(0, mx - 1); x <= std::min(nx_ - 1, mx + 1); ++x) {
+      size_t c = static_cast<size_t>(y) * nx_ + x;
+      for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+        const Edge& e = edges_[items_[k]];
+        if (dist2_line(e, a) > t2 || dist2_line(e, b) > t2) continue;
+        double ex = double(e.b.X - e.a.X), ey = double(e.b.Y - e.a.Y);
+        double len2 = ex * ex + ey * ey;
+        double t = len2 > 0 ? (ex * double(m.X - e.a.X) + ey * double(m.Y - e.a.Y)) / len2 : 0;
+        double slack = len2 > 0 ? static_cast<double>(tol) / std::sqrt(len2) : 1;
+        if (t >= -slack && t <= 1 + slack) return true;
+      }
+    }
+  return false;
+}
+
+bool EdgeGrid::inside(const Point& p) const {
+  if (edges_.empty()) return false;
+  if (p.X < x0_ || p.Y < y0_ || p.X > x0_ + coord_t(nx_) * cell_ || p.Y > y0_ + coord_t(ny_) * cell_)
+    return false;
+  // Ray to +x; each crossing is counted in the one column that contains its x.
+  int row = cy(p.Y);
+  bool in = false;
+  for (int c = cx(p.X); c < nx_; ++c) {
+    double col_lo = static_cast<double>(x0_ + coord_t(c) * cell_);
+    double col_hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
+    size_t cell = static_cast<size_t>(row) * nx_ + c;
+    for (uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
+      const Edge& e = edges_[items_[k]];
+      if ((e.a.Y > p.Y) == (e.b.Y > p.Y)) continue;
+      double x = static_cast<double>(e.a.X) + static_cast<double>(p.Y - e.a.Y) *
+                                                  static_cast<double>(e.b.X - e.a.X) /
+                                                  static_cast<double>(e.b.Y - e.a.Y);
+      if (x < static_cast<double>(p.X)) continue;
+      double owner_lo = c == cx(p.X) ? -1e300 : col_lo;
+      if (x >= owner_lo && x < col_hi) in = !in;
+    }
+  }
+  return in;
+}
+
+double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
+  if (edges_.empty()) return 0.0;
+  std::vector<double> ts;
+  visit_segment_cells(a, b, [&](int x, int y) {
+    size_t c = static_cast<size_t>(y) * nx_ + x;
+    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+      const Edge& e = edges_[items_[k]];
+      if (!segments_meet(a, b, e.a, e.b)) continue;
+      double rx = double(b.X - a.X), ry = double(b.Y - a.Y), sx = double(e.b.X - e.a.X),
+             sy = double(e.b.Y - e.a.Y);
+      double den = rx * sy - ry * sx;
+      if (den == 0) continue;  // collinear overlap: on the border, counts as either side
+      ts.push_back((double(e.a.X - a.X) * sy - double(e.a.Y - a.Y) * sx) / den);
+    }
+  });
+  std::sort(ts.begin(), ts.end());
+  ts.erase(std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }),
+           ts.end());
+  // Classify each sub-interval by its midpoint.
+  double covered = 0, prev = 0;
+  ts.push_back(1.0);
+  for (double t : ts) {
+    t = std::clamp(t, 0.0, 1.0);
+    if (t > prev) {
+      double mid = 0.5 * (prev + t);
+      Point m(a.X + static_cast<coord_t>(std::llround(mid * double(b.X - a.X))),
+              a.Y + static_cast<coord_t>(std::llround(mid * double(b.Y - a.Y))));
+      if (inside(m)) covered += t - prev;
+    }
+    prev = std::max(prev, t);
+  }
+  return covered;
+}
+
+}  // namespace tranche::toolpath

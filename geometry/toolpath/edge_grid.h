@@ -1,0 +1,51 @@
+// A uniform grid over the edges of closed rings, for the geometric questions the toolpath stage
+// asks many times per layer: does a travel cross a border, does a segment run along a border,
+// is a point inside, how much of a bead's width lies over material. Exact integer predicates.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/core/geom.h"
+
+namespace tranche::toolpath {
+
+class EdgeGrid {
+ public:
+  EdgeGrid() = default;
+  // `cell` is the grid pitch in units (1 nm); 0 picks one from the edge count and extent.
+  explicit EdgeGrid(const geo::Rings& rings, geo::coord_t cell = 0);
+
+  bool empty() const { return edges_.empty(); }
+  // Whether segment ab touches or crosses any edge.
+  bool crosses(const geo::Point& a, const geo::Point& b) const;
+  // Whether segment ab lies along an edge: both ends within `tol` units of one edge's line and
+  // its midpoint projects inside that edge.
+  bool along(const geo::Point& a, const geo::Point& b, geo::coord_t tol) const;
+  // Even-odd point in polygon over all rings (points on an edge count as either).
+  bool inside(const geo::Point& p) const;
+  // Fraction (0..1) of segment ab lying inside the rings (even-odd).
+  double inside_fraction(const geo::Point& a, const geo::Point& b) const;
+
+ private:
+  struct Edge {
+    geo::Point a, b;
+  };
+  template <class F>
+  void visit_segment_cells(const geo::Point& a, const geo::Point& b, F&& f) const;
+  int cx(geo::coord_t x) const;
+  int cy(geo::coord_t y) const;
+
+  std::vector<Edge> edges_;
+  geo::coord_t x0_ = 0, y0_ = 0, cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<uint32_t> start_;  // CSR: edges of cell i are items_[start_[i] .. start_[i+1])
+  std::vector<uint32_t> items_;
+};
+
+// Exact orientation of c relative to the directed line ab: >0 left, <0 right, 0 collinear.
+int orient(const geo::Point& a, const geo::Point& b, const geo::Point& c);
+// Whether closed segments ab and cd share a point.
+bool segments_meet(const geo::Point& a, const geo::Point& b, const geo::Point& c, const geo::Point& d);
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,768 @@
+#include "geometry/toolpath/layer_loop.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/toolpath/cells.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/context_fill.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/flow.h"
+#include "geometry/toolpath/order.h"
+#include "geometry/toolpath/perimeters.h"
+#include "geometry/toolpath/relations.h"
+#include "geometry/toolpath/walk.h"
+#include "geometry/toolpath/zigzag.h"
+
+namespace tranche::toolpath {
+namespace {
+
+using ctx::PropertyValues;
+using schema::Border;
+using schema::FieldId;
+using schema::Level;
+using schema::PathKind;
+using schema::PropId;
+using schema::Stage;
+
+constexpr double kNoAngle = std::numeric_limits<double>::quiet_NaN();
+
+class LayerTask;
+
+// `replace island { ... }`: offsets the island's shape, emits moves and text, and the default.
+class IslandReplace final : public ctx::ReplaceApi {
+ public:
+  IslandReplace(LayerTask& t, IslandPlan& ip) : t_(t), ip_(ip) {}
+  void move_to(double x, double y, const ctx::MoveOptions& o) override;
+  void gcode(std::string_view line) override {
+    ip_.ops.push_back({Op::Kind::Text, {}, 0, 1, 0, std::string(line)});
+  }
+  void comment(std::string_view text) override { gcode(fmt::format("; {}", text)); }
+  Status emit_default() override;
+  Status offset(double mm) override;
+  Status reverse() override { return Error{"replace island", "reverse applies to paths, not islands"}; }
+  Status status = ok_status();
+
+ private:
+  LayerTask& t_;
+  IslandPlan& ip_;
+  bool altered_ = false, built_ = false;
+};
+
+// `replace path { ... }`.
+class PathReplace final : public ctx::ReplaceApi {
+ public:
+  PathReplace(LayerTask& t, IslandPlan* ip, PathPlan& p) : t_(t), ip_(ip), p_(p) {}
+  void move_to(double x, double y, const ctx::MoveOptions& o) override;
+  void gcode(std::string_view line) override {
+    p_.ops.push_back({Op::Kind::Text, {}, 0, 1, 0, std::string(line)});
+  }
+  void comment(std::string_view text) override { gcode(fmt::format("; {}", text)); }
+  Status emit_default() override {
+    p_.ops.push_back({Op::Kind::Default, {}, 0, 1, 0, {}});
+    return ok_status();
+  }
+  Status offset(double mm) override;
+  Status reverse() override;
+
+ private:
+  LayerTask& t_;
+  IslandPlan* ip_;
+  PathPlan& p_;
+};
+
+class LayerTask {
+ public:
+  LayerTask(const PrintSetup& s, int index, Report& report)
+      : S(s), L(index), report_(report), ctx_(s.print_ctx), nb_(s.layers, index) {
+    const auto* d = s.rules.decider;
+    const auto* b = s.rules.defaults;
+    auto varies = [&](Stage st) {
+      Level l = Level::Print;
+      if (d) l = std::max(l, d->varies_at(st));
+      if (b) l = std::max(l, b->varies_at(st));
+      return l;
+    };
+    per_piece_ = varies(Stage::Piece) == Level::Piece;
+    cooling_at_ = varies(Stage::Cooling);
+    has_exec_ = s.rules.executors != nullptr;
+    has_repl_path_ = s.rules.replacers && s.rules.replacers->has(Level::Path);
+    has_repl_island_ = s.rules.replacers && s.rules.replacers->has(Level::Island);
+    need_pieces_ = per_piece_ || has_exec_ || has_repl_path_;
+    height_ = s.layers[static_cast<size_t>(index)].height();
+    filament_ = s.print_props[PropId::FilamentDiameter];
+  }
+
+  Result<LayerPlan> run() {
+    if (Status st = layer_level(); !st) return st.error();
+    return std::move(plan_);
+  }
+
+  // Used by the replacer APIs.
+  Status decide(Stage st, PropertyValues& props, double script_angle = kNoAngle) {
+    ctx_.set_props(&props);
+    if (S.rules.defaults) {
+      if (Status s = S.rules.defaults->decide(st, ctx_, props); !s) return s;
+    }
+    if (st == Stage::Island && !std::isnan(script_angle)) props[PropId::FillAngle] = script_angle;
+    if (S.rules.decider) {
+      if (Status s = S.rules.decider->decide(st, ctx_, props); !s) return s;
+    }
+    return ok_status();
+  }
+  Status island_decide(IslandPlan& ip) {
+    ctx_.clear_from(Level::Island);
+    island_fields(ip);
+    set_island_fields(ctx_, ip);
+    ip.props = plan_.props;
+    return decide(Stage::Island, ip.props, script_angle_);
+  }
+  Status island_content(IslandPlan& ip);
+  // Speed, flow and width a replacer's `move to` uses in this context (path kind `custom`
+  // for island replacers).
+  Result<Op> custom_move(const PropertyValues& base, bool in_path) {
+    PropertyValues p = base;
+    if (!in_path) {
+      ctx_.clear_from(Level::Cell);
+      ctx_.set(FieldId::PathKind, static_cast<double>(PathKind::Custom));
+      ctx_.set(FieldId::PathPerimeter, -1);
+      if (Status s = decide(Stage::PathPlan, p); !s) return s.error();
+    }
+    if (Status s = decide(Stage::Piece, p); !s) return s.error();
+    Op op;
+    op.speed = static_cast<float>(p[PropId::Speed]);
+    op.flow = static_cast<float>(p[PropId::Flow]);
+    op.width = static_cast<float>(p[PropId::Width]);
+    return op;
+  }
+  geo::Point to_model(double x_mm, double y_mm) const {
+    return geo::Point(geo::to_units(x_mm) - S.shift.X, geo::to_units(y_mm) - S.shift.Y);
+  }
+  void island_fields(IslandPlan& ip);
+
+ private:
+  Status layer_level();
+  Status skirt_level();
+  Status island_level(const geo::Island& src, int index, IslandPlan& ip);
+  Status cell_level(IslandPlan& ip, const FillRegion& region, const EdgeGrid& border, double angle);
+  void order(IslandPlan& ip, geo::Point& pos);
+  Status path_level(IslandPlan* ip, PathPlan& p);
+  Status piece_level(PathPlan& p);
+  void travel_and_retract();
+  void time_and_slowdown();
+  Status cooling_level();
+  Result<PropertyValues> plan_path_props(const PropertyValues& island_props, PathKind kind, int perimeter) {
+    ctx_.clear_from(Level::Cell);
+    ctx_.set(FieldId::PathKind, static_cast<double>(kind));
+    ctx_.set(FieldId::PathPerimeter, perimeter);
+    PropertyValues p = island_props;
+    if (Status s = decide(Stage::PathPlan, p); !s) return s.error();
+    return p;
+  }
+  std::string where() const { return fmt::format("layer {}", L); }
+
+  const PrintSetup& S;
+  int L;
+  Report& report_;
+  ctx::Context ctx_;
+  Neighbours nb_;
+  LayerPlan plan_;
+  PathView path_view_;
+  IslandsView islands_view_;
+  double height_ = 0.2, filament_ = 1.75;
+  double script_angle_ = kNoAngle;
+  bool per_piece_ = false, has_exec_ = false, has_repl_path_ = false, has_repl_island_ = false,
+       need_pieces_ = false;
+  Level cooling_at_ = Level::Layer;
+};
+
+Status LayerTask::layer_level() {
+  const geo::Layer& layer = S.layers[static_cast<size_t>(L)];
+  plan_.index = L;
+  plan_.z_bottom = layer.z_bottom;
+  plan_.z = layer.z_top;
+  plan_.height = layer.height();
+  for (const auto& isl : layer.islands) plan_.area += geo::area_mm2(isl.shape);
+  ctx_.clear_from(Level::Layer);
+  set_layer_fields(ctx_, plan_, static_cast<int>(layer.islands.size()));
+  plan_.props = S.print_props;
+  if (Status s = decide(Stage::Layer, plan_.props); !s) return s;
+
+  plan_.islands.resize(layer.islands.size());
+  for (size_t i = 0; i < layer.islands.size(); ++i)
+    if (Status s = island_level(layer.islands[i], static_cast<int>(i), plan_.islands[i]); !s) return s;
+  if (L == 0)
+    if (Status s = skirt_level(); !s) return s;
+
+  // Print order: skirt, then islands nearest first, starting at the rear of the layer.
+  geo::Point pos(0, 0);
+  {
+    geo::BBox2 all;
+    for (const auto& ip : plan_.islands)
+      for (const auto& r : ip.shape)
+        for (const auto& q : r) all.add(q);
+    if (!all.empty()) pos = geo::Point((all.min_x + all.max_x) / 2, all.max_y);
+  }
+  for (auto& sk : plan_.skirt) {
+    size_t seam = choose_seam(sk.pts, schema::Seam::Rear, pos);
+    sk.pts = open_loop_at(sk.pts, seam);
+    sk.border.assign(sk.piece_count(), Border::None);
+    pos = sk.pts.front();
+  }
+  std::vector<IslandPlan> ordered;
+  ordered.reserve(plan_.islands.size());
+  std::vector<char> used(plan_.islands.size(), 0);
+  for (size_t step = 0; step < plan_.islands.size(); ++step) {
+    double bd = 1e300;
+    size_t bi = 0;
+    for (size_t i = 0; i < plan_.islands.size(); ++i) {
+      if (used[i]) continue;
+      geo::BBox2 b = bbox(plan_.islands[i].shape);
+      double dx = std::max<double>({0.0, double(b.min_x - pos.X), double(pos.X - b.max_x)});
+      double dy = std::max<double>({0.0, double(b.min_y - pos.Y), double(pos.Y - b.max_y)});
+      double d = b.empty() ? 1e299 : dx * dx + dy * dy;
+      if (d < bd) bd = d, bi = i;
+    }
+    used[bi] = 1;
+    order(plan_.islands[bi], pos);
+    ordered.push_back(std::move(plan_.islands[bi]));
+  }
+  plan_.islands = std::move(ordered);
+  if (has_exec_ || has_repl_path_) islands_view_.bind(ctx_, plan_.islands);
+
+  // Path and piece levels, in print order.
+  for (auto& sk : plan_.skirt)
+    if (Status s = path_level(nullptr, sk); !s) return s;
+  for (auto& ip : plan_.islands) {
+    ctx_.clear_from(Level::Island);
+    set_island_fields(ctx_, ip);
+    for (auto& p : ip.paths)
+      if (Status s = path_level(&ip, p); !s) return s;
+  }
+  travel_and_retract();
+  time_and_slowdown();
+  return cooling_level();
+}
+
+Status LayerTask::skirt_level() {
+  int loops = static_cast<int>(S.print_props[PropId::SkirtLoops]);
+  if (loops <= 0 || S.skirt_around.empty()) return ok_status();
+  ctx_.clear_from(Level::Island);
+  auto props = plan_path_props(plan_.props, PathKind::Skirt, -1);
+  if (!props) return props.error();
+  double w = (*props)[PropId::Width];
+  double s = bead_spacing_mm(w, height_);
+  double d0 = S.print_props[PropId::SkirtDistance] + 0.5 * w;
+  for (int k = loops - 1; k >= 0; --k) {  // outermost first: the skirt ends next to the part
+    for (auto& r : offset(S.skirt_around, d0 + k * s)) {
+      if (!ClipperLib::Orientation(r)) continue;
+      PathPlan p;
+      p.kind = PathKind::Skirt;
+      p.closed = true;
+      p.width = static_cast<float>(w);
+      p.pts = std::move(r);
+      p.props = *props;
+      plan_.skirt.push_back(std::move(p));
+    }
+  }
+  return ok_status();
+}
+
+void LayerTask::island_fields(IslandPlan& ip) {
+  ip.area = area_mm2(ip.shape);
+  ip.border_length = 0;
+  ip.holes = 0;
+  for (const auto& r : ip.shape) {
+    ip.border_length += geo::length_mm(r);
+    if (!ClipperLib::Orientation(r)) ++ip.holes;
+  }
+  geo::BBox2 b = bbox(ip.shape);
+  if (!b.empty()) {
+    ip.size_x = geo::to_mm(b.max_x - b.min_x);
+    ip.size_y = geo::to_mm(b.max_y - b.min_y);
+    ip.center_x = geo::to_mm((b.min_x + b.max_x) / 2 + S.shift.X);
+    ip.center_y = geo::to_mm((b.min_y + b.max_y) / 2 + S.shift.Y);
+  }
+  ip.supported = L == 0 ? 1.0 : fraction_on(ip.shape, nb_.layer(-1));
+  ip.covered = fraction_on(ip.shape, nb_.layer(1));
+}
+
+Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip) {
+  ip.index = index;
+  geo::Rings rings;
+  rings.push_back(src.shape.outer);
+  for (const auto& h : src.shape.holes) rings.push_back(h);
+  ip.shape = simplify(rings, geo::to_units(S.simplify_mm));
+  script_angle_ = src.fill_angle_deg;
+  if (Status s = island_decide(ip); !s) return s;
+  if (has_repl_island_) {
+    IslandReplace api(*this, ip);
+    auto r = S.rules.replacers->replace(Level::Island, ctx_, api);
+    if (!r) return r.error();
+    if (!api.status) return api.status;
+    if (*r) {
+      ip.replaced = true;
+      return ok_status();
+    }
+    ip.ops.clear();
+  }
+  return island_content(ip);
+}
+
+Status LayerTask::island_content(IslandPlan& ip) {
+  ip.paths.clear();
+  ip.cells.clear();
+  const PropertyValues& P = ip.props;
+  int count = static_cast<int>(P[PropId::Perimeters]);
+  PerimeterSpec spec;
+  spec.widths.clear();
+  std::vector<PropertyValues> loop_props;
+  for (int k = 0; k < count; ++k) {
+    auto p = plan_path_props(P, k == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter, k);
+    if (!p) return p.error();
+    spec.widths.push_back((*p)[PropId::Width]);
+    loop_props.push_back(*p);
+  }
+  auto fill_props = plan_path_props(P, PathKind::Infill, -1);
+  if (!fill_props) return fill_props.error();
+  spec.fill_width = (*fill_props)[PropId::Width];
+  spec.height = height_;
+  spec.infill_overlap = P[PropId::InfillOverlap];
+  Perimeters per = make_perimeters(ip.shape, spec);
+  for (auto& loop : per.loops) {
+    PathPlan p;
+    p.kind = loop.depth == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter;
+    p.perimeter = loop.depth;
+    p.closed = true;
+    p.width = static_cast<float>(spec.widths[static_cast<size_t>(loop.depth)]);
+    p.pts = std::move(loop.ring);
+    p.props = loop_props[static_cast<size_t>(loop.depth)];
+    ip.paths.push_back(std::move(p));
+  }
+  if (per.fill_region.empty()) return ok_status();
+  SolidSpec ss;
+  ss.top_layers = static_cast<int>(P[PropId::TopLayers]);
+  ss.bottom_layers = static_cast<int>(P[PropId::BottomLayers]);
+  ss.density = P[PropId::InfillDensity];
+  ss.width = spec.fill_width;
+  EdgeGrid border(per.fill_region);
+  double angle = P[PropId::FillAngle];
+  for (const FillRegion& region : split_fill(per.fill_region, nb_, ss))
+    if (Status s = cell_level(ip, region, border, angle); !s) return s;
+  return ok_status();
+}
+
+Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const EdgeGrid& border, double angle) {
+  const bool solid = region.kind != PathKind::Infill;
+  auto props = plan_path_props(ip.props, region.kind, -1);
+  if (!props) return props.error();
+  double w = (*props)[PropId::Width];
+  double s = bead_spacing_mm(w, height_);
+  double density = solid ? 1.0 : (*props)[PropId::InfillDensity];
+  if (density <= 0) return ok_status();
+  FillSpec fs;
+  fs.angle_deg = angle;
+  fs.pitch_mm = s / std::min(density, 1.0);
+  fs.bed_grid = !solid;
+  fs.artificial_inset_mm = 0.5 * s;
+  for (CellShape& cs : make_cells(region.rings, angle, border, report_, where())) {
+    CellPlan cell;
+    cell.index = static_cast<int>(ip.cells.size());
+    cell.area_mm2 = cs.area_mm2;
+    cell.fill_angle_deg = angle;
+    cell.solid = solid;
+    bool any = false;
+    for (FillPath& fp : zigzag(cs.shape, fs)) {
+      PathPlan p;
+      p.kind = region.kind;
+      p.cell = cell.index;
+      p.width = static_cast<float>(w);
+      p.flow_scale = static_cast<float>(std::clamp(fp.pitch_ratio, 0.6, 1.4));
+      p.pts = std::move(fp.pts);
+      p.border = std::move(fp.border);
+      p.props = *props;
+      ip.paths.push_back(std::move(p));
+      any = true;
+    }
+    if (any) ip.cells.push_back(cell);
+  }
+  return ok_status();
+}
+
+void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
+  if (ip.replaced && ip.paths.empty()) return;
+  const bool outer_first = ip.props[PropId::OuterFirst] != 0;
+  const auto seam = static_cast<schema::Seam>(static_cast<int>(ip.props[PropId::Seam]));
+  std::vector<PathPlan> loops, fills, out;
+  for (auto& p : ip.paths) (p.closed ? loops : fills).push_back(std::move(p));
+  // Loops: by depth (innermost first unless outer_first), nearest seam first within a depth.
+  std::stable_sort(loops.begin(), loops.end(), [&](const PathPlan& a, const PathPlan& b) {
+    return outer_first ? a.perimeter < b.perimeter : a.perimeter > b.perimeter;
+  });
+  for (size_t i = 0; i < loops.size();) {
+    size_t j = i;
+    while (j < loops.size() && loops[j].perimeter == loops[i].perimeter) ++j;
+    std::vector<size_t> seams(j - i);
+    for (size_t k = i; k < j; ++k) seams[k - i] = choose_seam(loops[k].pts, seam, pos);
+    std::vector<char> used(j - i, 0);
+    for (size_t step = i; step < j; ++step) {
+      double bd = 1e300;
+      size_t bk = i;
+      for (size_t k = i; k < j; ++k) {
+        if (used[k - i]) continue;
+        size_t s = seam == schema::Seam::Nearest ? choose_seam(loops[k].pts, seam, pos) : seams[k - i];
+        seams[k - i] = s;
+        double d = dist2(pos, loops[k].pts[s]);
+        if (d < bd) bd = d, bk = k;
+      }
+      used[bk - i] = 1;
+      PathPlan& p = loops[bk];
+      p.pts = open_loop_at(p.pts, seams[bk - i]);
+      p.border.assign(p.piece_count(), Border::Real);
+      pos = p.pts.front();
+      out.push_back(std::move(p));
+    }
+    i = j;
+  }
+  // Zig-zags: nearest end first; either end may start. Paths of one cell stay together.
+  std::vector<const geo::Ring*> ends;
+  for (const auto& f : fills) ends.push_back(&f.pts);
+  std::vector<Visit> visits = chain_open(ends, pos);
+  std::vector<PathPlan> chained;
+  for (const Visit& v : visits) {
+    PathPlan& p = fills[v.index];
+    if (v.reversed) {
+      std::reverse(p.pts.begin(), p.pts.end());
+      std::reverse(p.border.begin(), p.border.end());
+    }
+    chained.push_back(std::move(p));
+  }
+  std::vector<int> first_seen;
+  for (const auto& p : chained)
+    if (std::find(first_seen.begin(), first_seen.end(), p.cell) == first_seen.end())
+      first_seen.push_back(p.cell);
+  for (int c : first_seen)
+    for (auto& p : chained)
+      if (p.cell == c) out.push_back(std::move(p));
+  if (!out.empty() && !out.back().pts.empty()) pos = out.back().pts.back();
+  for (size_t i = 0; i < out.size(); ++i) out[i].index = static_cast<int>(i);
+  ip.paths = std::move(out);
+}
+
+Status LayerTask::path_level(IslandPlan* ip, PathPlan& p) {
+  ctx_.clear_from(Level::Cell);
+  if (ip && p.cell >= 0) set_cell_fields(ctx_, ip->cells[static_cast<size_t>(p.cell)]);
+  set_path_fields(ctx_, p);
+  if (has_repl_path_ || has_exec_ || per_piece_) path_view_.bind(ctx_, p, S.shift);
+  if (has_repl_path_) {
+    PathReplace api(*this, ip, p);
+    auto r = S.rules.replacers->replace(Level::Path, ctx_, api);
+    if (!r) return r.error();
+    if (*r) {
+      p.replaced = true;
+      set_path_fields(ctx_, p);  // an altered path is decided again on its new shape
+      path_view_.bind(ctx_, p, S.shift);
+    } else {
+      p.ops.clear();
+    }
+  }
+  return piece_level(p);
+}
+
+Status LayerTask::piece_level(PathPlan& p) {
+  size_t n = p.piece_count();
+  if (need_pieces_ && L > 0 && n > 0) {
+    const EdgeGrid& below = nb_.below_grid();
+    p.overhang.assign(n, 0.0f);
+    double half = 0.5 * p.width * geo::kUnitsPerMm;
+    for (size_t i = 0; i < n; ++i) {
+      const geo::Point &a = p.pts[i], &b = p.pts[i + 1];
+      double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
+      if (len <= 0) continue;
+      double nx = -dy / len * half, ny = dx / len * half;
+      double miss = 0;
+      constexpr double ts[] = {0.25, 0.5, 0.75};
+      for (double t : ts) {
+        double mx = double(a.X) + dx * t, my = double(a.Y) + dy * t;
+        geo::Point l(std::llround(mx + nx), std::llround(my + ny)),
+            r(std::llround(mx - nx), std::llround(my - ny));
+        miss += 1.0 - below.inside_fraction(l, r);
+      }
+      p.overhang[i] = static_cast<float>(miss / 3.0);
+    }
+  }
+  PropertyValues props = p.props;
+  if (per_piece_ && n > 0) {
+    p.pieces.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      set_piece_fields(ctx_, p, i, S.shift);
+      props = p.props;
+      if (Status s = decide(Stage::Piece, props); !s) return s;
+      p.pieces[i] = {static_cast<float>(props[PropId::Speed]), static_cast<float>(props[PropId::Flow])};
+    }
+    ctx_.clear_from(Level::Piece);
+  } else {
+    if (Status s = decide(Stage::Piece, props); !s) return s;
+    p.pieces.assign(1, {static_cast<float>(props[PropId::Speed]), static_cast<float>(props[PropId::Flow])});
+  }
+  p.props = props;
+  for (Op& op : p.ops) {  // replacer moves without an explicit speed take the decided one
+    if (op.kind == Op::Kind::Extrude && op.speed <= 0) op.speed = static_cast<float>(props[PropId::Speed]);
+    if (op.kind == Op::Kind::Extrude && op.flow < 0) op.flow = static_cast<float>(props[PropId::Flow]);
+  }
+  return ok_status();
+}
+
+void LayerTask::travel_and_retract() {
+  const double before = S.print_props[PropId::RetractBeforeTravel];
+  const double longer = S.print_props[PropId::RetractLongTravel];
+  const bool can_retract = S.print_props[PropId::RetractLength] > 0;
+  bool first = true;
+  geo::Point pos;
+  const IslandPlan* prev_island = nullptr;
+  auto visit = [&](const IslandPlan* ip, PathPlan& p, const EdgeGrid* grid) {
+    if (p.pts.empty()) return;
+    const geo::Point& to = p.pts.front();
+    if (first) {
+      p.retract = can_retract;  // the layer change always retracts
+    } else {
+      double len = std::sqrt(dist2(pos, to)) * geo::kMmPerUnit;
+      bool cross = ip != prev_island || ip == nullptr || (grid && len > before && grid->crosses(pos, to));
+      p.retract = can_retract && (len > longer || (len > before && cross));
+    }
+    first = false;
+    pos = p.pts.back();
+    prev_island = ip;
+  };
+  for (auto& p : plan_.skirt) visit(nullptr, p, nullptr);
+  for (auto& ip : plan_.islands) {
+    EdgeGrid grid(ip.shape);
+    for (auto& p : ip.paths) visit(&ip, p, &grid);
+    if (ip.replaced) prev_island = nullptr;  // replacer moves in between: be safe
+  }
+}
+
+// Time of a layer plan at its decided speeds (the writer's own moves, via walk_layer).
+struct TimeVisitor {
+  MotionClock clock;
+  const PrintSetup& S;
+  double height, filament;
+  double extrude_s = 0, volume = 0;
+  bool started = false;
+  geo::Point pos;
+  TimeVisitor(const PrintSetup& s, double h, double f) : clock(s.motion), S(s), height(h), filament(f) {}
+  void island_begin(const IslandPlan&) {}
+  void island_end(const IslandPlan&) {}
+  void cell_begin(const IslandPlan&, const CellPlan&) {}
+  void cell_end(const IslandPlan&, const CellPlan&) {}
+  void path_begin(const IslandPlan*, const PathPlan&) {}
+  void path_end(const IslandPlan*, const PathPlan&) {}
+  void travel(const geo::Point& to, bool retract) {
+    if (!started) {
+      clock.start_at(to);  // the travel from the previous layer is counted by the writer
+      started = true;
+      pos = to;
+      return;
+    }
+    if (retract) clock.pause(2 * S.print_props[PropId::RetractLength] / S.print_props[PropId::RetractSpeed]);
+    clock.move(to, S.print_props[PropId::TravelSpeed], false);
+    pos = to;
+  }
+  void extrude(const geo::Point& to, double speed, double mm3) {
+    double t0 = clock.seconds();
+    clock.move(to, speed, true);
+    extrude_s += clock.seconds() - t0;
+    volume += mm3;
+    pos = to;
+  }
+  void path_default(const IslandPlan*, const PathPlan& p) {
+    if (p.pts.empty()) return;
+    travel(p.pts.front(), p.retract);
+    double area = bead_area_mm2(p.width, height);
+    for (size_t i = 0; i < p.piece_count(); ++i) {
+      const auto& pp = p.piece(i);
+      double len = std::sqrt(dist2(p.pts[i], p.pts[i + 1])) * geo::kMmPerUnit;
+      extrude(p.pts[i + 1], pp.speed, len * area * pp.flow * p.flow_scale);
+    }
+  }
+  void op(const IslandPlan*, const PathPlan*, const Op& op) {
+    if (op.kind == Op::Kind::Travel) {
+      travel(op.to,
+             std::sqrt(dist2(pos, op.to)) * geo::kMmPerUnit > S.print_props[PropId::RetractBeforeTravel]);
+    } else if (op.kind == Op::Kind::Extrude) {
+      if (!started) travel(op.to, true);
+      double len = std::sqrt(dist2(pos, op.to)) * geo::kMmPerUnit;
+      extrude(op.to, op.speed, len * bead_area_mm2(op.width, height) * op.flow);
+    }
+  }
+};
+
+void LayerTask::time_and_slowdown() {
+  auto estimate = [&]() {
+    TimeVisitor tv(S, height_, filament_);
+    walk_layer(plan_, tv);
+    double total = tv.clock.finish();
+    plan_.extruded_mm3 = tv.volume;
+    return std::pair<double, double>(total, tv.extrude_s);
+  };
+  auto [total, extr] = estimate();
+  const double min_time = plan_.props[PropId::MinLayerTime];
+  const double min_speed = S.print_props[PropId::MinPrintSpeed];
+  for (int iter = 0; iter < 2 && min_time > 0 && total < min_time && extr > 0; ++iter) {
+    double factor = std::clamp(extr / std::max(extr + (min_time - total), 1e-9), 0.05, 1.0);
+    auto slow = [&](PathPlan& p) {
+      for (auto& pc : p.pieces)
+        pc.speed = static_cast<float>(std::max(std::min<double>(pc.speed, min_speed), pc.speed * factor));
+      for (auto& op : p.ops)
+        if (op.kind == Op::Kind::Extrude)
+          op.speed = static_cast<float>(std::max(std::min<double>(op.speed, min_speed), op.speed * factor));
+    };
+    for (auto& p : plan_.skirt) slow(p);
+    for (auto& ip : plan_.islands) {
+      for (auto& p : ip.paths) slow(p);
+      for (auto& op : ip.ops)
+        if (op.kind == Op::Kind::Extrude)
+          op.speed = static_cast<float>(std::max(std::min<double>(op.speed, min_speed), op.speed * factor));
+    }
+    plan_.slowed = true;
+    std::tie(total, extr) = estimate();
+  }
+  plan_.time_s = total;
+}
+
+Status LayerTask::cooling_level() {
+  ctx_.clear_from(Level::Island);
+  ctx_.set(FieldId::LayerTime, plan_.time_s);
+  if (cooling_at_ <= Level::Layer) {
+    PropertyValues props = plan_.props;
+    if (Status s = decide(Stage::Cooling, props); !s) return s;
+    float fan = static_cast<float>(props[PropId::Fan]);
+    plan_.props[PropId::Fan] = fan;
+    for (auto& p : plan_.skirt) p.fan = fan, p.props[PropId::Fan] = fan;
+    for (auto& ip : plan_.islands)
+      for (auto& p : ip.paths) p.fan = fan, p.props[PropId::Fan] = fan;
+    return ok_status();
+  }
+  auto one = [&](IslandPlan* ip, PathPlan& p) -> Status {
+    ctx_.clear_from(Level::Cell);
+    if (ip && p.cell >= 0) set_cell_fields(ctx_, ip->cells[static_cast<size_t>(p.cell)]);
+    set_path_fields(ctx_, p);
+    PropertyValues props = p.props;
+    if (Status s = decide(Stage::Cooling, props); !s) return s;
+    p.fan = static_cast<float>(props[PropId::Fan]);
+    p.props[PropId::Fan] = p.fan;
+    return ok_status();
+  };
+  for (auto& p : plan_.skirt)
+    if (Status s = one(nullptr, p); !s) return s;
+  for (auto& ip : plan_.islands) {
+    ctx_.clear_from(Level::Island);
+    ctx_.set(FieldId::LayerTime, plan_.time_s);
+    set_island_fields(ctx_, ip);
+    for (auto& p : ip.paths)
+      if (Status s = one(&ip, p); !s) return s;
+  }
+  return ok_status();
+}
+
+void IslandReplace::move_to(double x, double y, const ctx::MoveOptions& o) {
+  Op op;
+  if (!o.travel) {
+    auto base = t_.custom_move(ip_.props, false);
+    if (!base) {
+      status = base.error();
+      return;
+    }
+    op = *base;
+  }
+  op.kind = o.travel ? Op::Kind::Travel : Op::Kind::Extrude;
+  op.to = t_.to_model(x, y);
+  if (o.speed) op.speed = static_cast<float>(*o.speed);
+  if (o.flow) op.flow = static_cast<float>(*o.flow);
+  ip_.ops.push_back(std::move(op));
+}
+
+Status IslandReplace::emit_default() {
+  if (altered_) {
+    if (Status s = t_.island_decide(ip_); !s) return s;
+    altered_ = false;
+    built_ = false;
+  }
+  if (!built_) {
+    if (Status s = t_.island_content(ip_); !s) return s;
+    built_ = true;
+  }
+  ip_.ops.push_back({Op::Kind::Default, {}, 0, 1, 0, {}});
+  return ok_status();
+}
+
+Status IslandReplace::offset(double mm) {
+  ip_.shape = toolpath::offset(ip_.shape, mm);
+  t_.island_fields(ip_);
+  altered_ = true;
+  return ok_status();
+}
+
+void PathReplace::move_to(double x, double y, const ctx::MoveOptions& o) {
+  Op op;
+  op.kind = o.travel ? Op::Kind::Travel : Op::Kind::Extrude;
+  op.to = t_.to_model(x, y);
+  op.width = p_.width;
+  op.speed = o.speed ? static_cast<float>(*o.speed) : 0.0f;  // 0: the path's decided speed
+  op.flow = o.flow ? static_cast<float>(*o.flow) : -1.0f;    // <0: the path's decided flow
+  p_.ops.push_back(std::move(op));
+}
+
+Status PathReplace::reverse() {
+  std::reverse(p_.pts.begin(), p_.pts.end());
+  std::reverse(p_.border.begin(), p_.border.end());
+  std::reverse(p_.overhang.begin(), p_.overhang.end());
+  return ok_status();
+}
+
+Status PathReplace::offset(double mm) {
+  auto& pts = p_.pts;
+  size_t n = pts.size();
+  if (n < 2 || mm == 0) return ok_status();
+  double d = mm * geo::kUnitsPerMm;
+  bool closed = p_.closed && pts.front() == pts.back();
+  size_t m = closed ? n - 1 : n;  // distinct points
+  auto normal = [&](size_t i) {   // left normal of segment i -> i+1 (cyclic when closed)
+    const geo::Point& a = pts[i % m];
+    const geo::Point& b = pts[(i + 1) % (closed ? m : n)];
+    double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
+    return len > 0 ? std::pair<double, double>(-dy / len, dx / len) : std::pair<double, double>(0, 0);
+  };
+  geo::Ring out(n);
+  for (size_t i = 0; i < m; ++i) {
+    std::pair<double, double> nin, nout;
+    if (closed) {
+      nin = normal((i + m - 1) % m);
+      nout = normal(i);
+    } else {
+      nin = normal(i == 0 ? 0 : i - 1);
+      nout = normal(i + 1 < n ? i : i - 1);
+    }
+    double sx = nin.first + nout.first, sy = nin.second + nout.second;
+    double dot = 1 + nin.first * nout.first + nin.second * nout.second;  // 1 + cos(turn)
+    double k = dot > 0.2 ? d * 2 / dot : d * 10;                         // miter, capped at sharp turns
+    out[i] = geo::Point(pts[i].X + std::llround(sx * k * 0.5 * (dot > 0.2 ? 1 : 0.2)),
+                        pts[i].Y + std::llround(sy * k * 0.5 * (dot > 0.2 ? 1 : 0.2)));
+  }
+  if (closed) out[n - 1] = out[0];
+  pts = std::move(out);
+  (void)ip_;
+  return ok_status();
+}
+
+}  // namespace
+
+Result<LayerPlan> plan_layer(const PrintSetup& setup, int index, Report& report) {
+  LayerTask task(setup, index, report);
+  return task.run();
+}
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,37 @@
+// Print order inside a layer: where closed loops start (the seam) and in which order loops,
+// zig-zags and islands are visited, chosen to keep travel short.
+//
+// Seams: `rear` starts a loop at its vertex of largest y (ties: smallest x); `aligned` does the
+// same but prefers sharp corners (concave ones most), which hide the seam, so that a seam found
+// on one layer is found again at the same place on the next (the choice depends only on the
+// loop's shape, never on the previous layer, so layers stay independent and parallel);
+// `nearest` starts at the vertex nearest the nozzle.
+#pragma once
+
+#include <vector>
+
+#include "geometry/core/geom.h"
+#include "runtime/schema/schema.h"
+
+namespace tranche::toolpath {
+
+// Index of the vertex where a closed loop starts.
+size_t choose_seam(const geo::Ring& loop, schema::Seam mode, const geo::Point& from);
+// The loop as a closed polyline starting and ending at vertex `start`.
+geo::Ring open_loop_at(const geo::Ring& loop, size_t start);
+
+// Squared distance in units².
+inline double dist2(const geo::Point& a, const geo::Point& b) {
+  double dx = static_cast<double>(a.X - b.X), dy = static_cast<double>(a.Y - b.Y);
+  return dx * dx + dy * dy;
+}
+
+// Greedy nearest-neighbour order of open paths that may be run either way: returns the order
+// as (index, reversed) pairs, starting from `from`.
+struct Visit {
+  size_t index;
+  bool reversed;
+};
+std::vector<Visit> chain_open(const std::vector<const geo::Ring*>& paths, const geo::Point& from);
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,88 @@
+// The plan of one layer: every path in print order with its decisions, ready to be written.
+// Layers are planned in parallel (layer_loop.h) and written in order (geometry/gcode), so a plan
+// holds everything the writer needs and nothing that depends on another layer's plan.
+// Coordinates are model units (1 nm); the writer adds the bed offset.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/core/geom.h"
+#include "runtime/context/context.h"
+#include "runtime/schema/schema.h"
+
+namespace tranche::toolpath {
+
+// One step of a replacer's output (`move to`, `gcode`, `comment`, `default`).
+struct Op {
+  enum class Kind : uint8_t { Extrude, Travel, Text, Default };
+  Kind kind = Kind::Text;
+  geo::Point to;        // Extrude / Travel
+  float speed = 0;      // mm/s
+  float flow = 1;       // ratio
+  float width = 0.45f;  // mm
+  std::string text;     // Text: a whole G-code line
+};
+
+// Speed and flow of one piece (or of every piece when decided once per path).
+struct PieceProps {
+  float speed = 60;  // mm/s
+  float flow = 1;    // ratio
+};
+
+struct PathPlan {
+  schema::PathKind kind = schema::PathKind::Custom;
+  int perimeter = -1;  // 0 = outermost; -1 when not a perimeter
+  int cell = -1;       // index of the cell it fills within the island; -1 otherwise
+  int index = 0;       // order within the island
+  bool closed = false;
+  float width = 0.45f;                 // mm, decided at path planning
+  float flow_scale = 1.0f;             // geometric correction (solid pitch fitted to its cell)
+  geo::Ring pts;                       // polyline; closed loops end at their first point
+  std::vector<schema::Border> border;  // per piece
+  std::vector<float> overhang;         // per piece, only when rules need piece fields
+  std::vector<PieceProps> pieces;      // per piece, or a single entry for all (hoisted)
+  float fan = 0;                       // ratio, decided at the cooling stage
+  bool retract = false;                // retract for the travel that reaches pts[0]
+  bool replaced = false;               // output is `ops` (which may include the default) instead of pts
+  std::vector<Op> ops;
+  ctx::PropertyValues props;  // every property as decided for this path (executors read them)
+
+  size_t piece_count() const { return pts.size() < 2 ? 0 : pts.size() - 1; }
+  const PieceProps& piece(size_t i) const { return pieces.size() == 1 ? pieces[0] : pieces[i]; }
+  double length_mm() const;
+};
+
+struct CellPlan {
+  int index = 0;
+  double area_mm2 = 0;
+  double fill_angle_deg = 0;
+  bool solid = false;
+};
+
+struct IslandPlan {
+  int index = 0;
+  geo::Rings shape;  // outline and holes after any replacer offset
+  // island.* fields, in the units of fields.def (mm, mm², ratio)
+  double area = 0, border_length = 0, supported = 1, covered = 0;
+  double size_x = 0, size_y = 0, center_x = 0, center_y = 0;  // centre in bed coordinates
+  int holes = 0;
+  ctx::PropertyValues props;  // as decided at the island stage
+  std::vector<CellPlan> cells;
+  std::vector<PathPlan> paths;  // print order; paths of a cell follow each other
+  bool replaced = false;
+  std::vector<Op> ops;  // replacer output when `replaced`
+};
+
+struct LayerPlan {
+  int index = 0;
+  double z_bottom = 0, z = 0, height = 0, area = 0;  // mm, mm²
+  ctx::PropertyValues props;                         // as decided at the layer stage
+  std::vector<PathPlan> skirt;                       // before the islands, on layer 0
+  std::vector<IslandPlan> islands;                   // print order
+  double time_s = 0;        // estimated, excluding the travel from the previous layer
+  double extruded_mm3 = 0;  // plastic volume
+  bool slowed = false;      // min_layer_time slowed it down
+};
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,68 @@
+// Layer relations: what lies below and above a layer, for the island fields (supported,
+// covered), piece.overhang, and the solid regions of the fill (top and bottom skins, bridges,
+// internal solid). A layer's material is the union of its islands (they are disjoint).
+#pragma once
+
+#include <map>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "geometry/core/layer.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "runtime/schema/schema.h"
+
+namespace tranche::toolpath {
+
+// A layer's material as rings (outer CCW, holes CW, non-zero fill).
+geo::Rings material(const geo::Layer& layer);
+
+// The neighbourhood of one layer; window results are computed on first use and cached, so a
+// layer whose islands all use the same top_layers/bottom_layers computes each window once.
+// Not thread-safe: one per layer task.
+class Neighbours {
+ public:
+  Neighbours(std::span<const geo::Layer> layers, int index);
+
+  int index() const { return index_; }
+  // Material of layer index + k (k may be negative); empty outside the print.
+  const geo::Rings& layer(int k);
+  // Region covered by all of the `n` layers above (n ≥ 1), resp. below; empty when any of them is
+  // outside the print (a top or the bed-side bottom).
+  const geo::Rings& all_above(int n);
+  const geo::Rings& all_below(int n);
+  // Material below this layer as an edge grid (overhang, bridges).
+  const EdgeGrid& below_grid();
+
+ private:
+  std::span<const geo::Layer> layers_;
+  int index_;
+  std::map<int, geo::Rings> material_;
+  std::vector<geo::Rings> above_, below_;  // [n-1] = intersection of the n nearest layers
+  bool below_grid_built_ = false;
+  EdgeGrid below_grid_;
+};
+
+// Fraction of `island` (area) lying on `other` (0..1); 0 for an empty island.
+double fraction_on(const geo::Rings& island, const geo::Rings& other);
+
+// The fill region of an island split by what it needs, in the order they are printed.
+struct FillRegion {
+  schema::PathKind kind;  // Infill, SolidInfill, TopSolid, BottomSolid or Bridge
+  geo::Rings rings;
+};
+
+struct SolidSpec {
+  int top_layers = 3, bottom_layers = 3;
+  double density = 0.2;  // sparse infill density (≥ 1: everything solid)
+  double width = 0.45;   // mm, fill bead width: slivers narrower than half of it are dropped
+};
+
+// Splits `fill` (one island's fill region) into bridge, bottom, top, internal solid and sparse
+// regions: top = not covered by the layer above; solid = not covered by all of the next
+// top_layers layers or not on all of the bottom_layers layers below; bridge = bottom over empty
+// space (not on layer 0, where everything is bottom). Solid regions are grown by one bead into
+// the sparse region so skins are anchored.
+std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const SolidSpec& spec);
+
+}  // namespace tranche::toolpath

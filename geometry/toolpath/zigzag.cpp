@@ -1,0 +1,236 @@
+#include "geometry/toolpath/zigzag.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace tranche::toolpath {
+
+using geo::coord_t;
+using geo::EdgeKind;
+using schema::Border;
+
+FillShape fill_shape(const geo::Rings& rings, EdgeKind kind) {
+  FillShape s;
+  s.rings = rings;
+  for (const auto& r : rings) s.kinds.emplace_back(r.size(), kind);
+  return s;
+}
+
+namespace {
+
+struct UV {
+  double u, v;
+};
+
+struct Ring2 {
+  std::vector<UV> pts;          // inset vertices in the rotated frame (units)
+  std::vector<EdgeKind> kinds;  // per edge
+};
+
+struct Interval {
+  double u0, u1;    // left and right ends on the line
+  uint32_t r0, r1;  // rings of the left and right ends
+  uint32_t e0, e1;  // edges of the left and right ends
+};
+
+Border border_of(EdgeKind k) { return k == EdgeKind::Real ? Border::Real : Border::Artificial; }
+
+// Moves every artificial edge inward (to the left) by `d`; vertices go to the intersection of
+// their two offset edges, capped at 3·d from where they were.
+Ring2 inset(const geo::Ring& ring, const std::vector<EdgeKind>& kinds, double d, double c, double s) {
+  Ring2 out;
+  size_t n = ring.size();
+  std::vector<UV> p;
+  std::vector<EdgeKind> k;
+  p.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto& a = ring[i];
+    if (ring[(i + 1) % n] == a) continue;  // zero-length edge
+    double x = static_cast<double>(a.X), y = static_cast<double>(a.Y);
+    // Rounded to 1/1024 unit so that rotation noise cannot tilt an edge parallel to the lines.
+    p.push_back({std::round((x * c + y * s) * 1024) / 1024, std::round((-x * s + y * c) * 1024) / 1024});
+    k.push_back(i < kinds.size() ? kinds[i] : EdgeKind::Real);
+  }
+  n = p.size();
+  out.kinds = k;
+  out.pts = p;
+  if (n < 3 || d <= 0) return out;
+  bool any = std::any_of(k.begin(), k.end(), [](EdgeKind e) { return e == EdgeKind::Artificial; });
+  if (!any) return out;
+  for (size_t i = 0; i < n; ++i) {
+    size_t ip = (i + n - 1) % n;
+    double dp = k[ip] == EdgeKind::Artificial ? d : 0, dn = k[i] == EdgeKind::Artificial ? d : 0;
+    if (dp == 0 && dn == 0) continue;
+    UV P = p[i], A = p[ip], B = p[(i + 1) % n];
+    double tpu = P.u - A.u, tpv = P.v - A.v, lp = std::hypot(tpu, tpv);
+    double tnu = B.u - P.u, tnv = B.v - P.v, ln = std::hypot(tnu, tnv);
+    tpu /= lp, tpv /= lp, tnu /= ln, tnv /= ln;
+    UV a{P.u - tpv * dp, P.v + tpu * dp}, b{P.u - tnv * dn, P.v + tnu * dn};
+    double cr = tpu * tnv - tpv * tnu;
+    UV q;
+    if (std::abs(cr) < 1e-6) {
+      q = {0.5 * (a.u + b.u), 0.5 * (a.v + b.v)};
+    } else {
+      double lam = ((b.u - a.u) * tnv - (b.v - a.v) * tnu) / cr;
+      q = {a.u + tpu * lam, a.v + tpv * lam};
+    }
+    double mu = q.u - P.u, mv = q.v - P.v, m = std::hypot(mu, mv), cap = 3 * std::max(dp, dn);
+    if (m > cap) q = {P.u + mu / m * cap, P.v + mv / m * cap};
+    out.pts[i] = q;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
+  std::vector<FillPath> out;
+  const double a = spec.angle_deg * std::numbers::pi / 180.0;
+  const double c = std::cos(a), s = std::sin(a);
+  const double pitch = spec.pitch_mm * geo::kUnitsPerMm;
+  if (!(pitch > 0)) return out;
+  const double d = spec.artificial_inset_mm * geo::kUnitsPerMm;
+
+  std::vector<Ring2> rings;
+  double vmin = 1e300, vmax = -1e300;
+  for (size_t r = 0; r < shape.rings.size(); ++r) {
+    static const std::vector<EdgeKind> kNone;
+    Ring2 r2 = inset(shape.rings[r], r < shape.kinds.size() ? shape.kinds[r] : kNone, d, c, s);
+    if (r2.pts.size() < 3) continue;
+    for (const auto& p : r2.pts) vmin = std::min(vmin, p.v), vmax = std::max(vmax, p.v);
+    rings.push_back(std::move(r2));
+  }
+  if (rings.empty() || vmax <= vmin) return out;
+
+  // Scan line positions (v), ascending.
+  std::vector<double> lines;
+  double pitch_ratio = 1.0;
+  const double delta = 1.0;  // 1 nm inside the extremes, off the extreme vertices
+  if (spec.bed_grid) {
+    for (double k = std::ceil((vmin + delta) / pitch); k * pitch <= vmax - delta; k += 1)
+      lines.push_back(k * pitch);
+  } else {
+    double h = vmax - vmin;
+    int n = static_cast<int>(std::lround(h / pitch));
+    if (n <= 0) {
+      lines.push_back(0.5 * (vmin + vmax));
+    } else {
+      for (int i = 0; i <= n; ++i) lines.push_back(std::clamp(vmin + h * i / n, vmin + delta, vmax - delta));
+      pitch_ratio = h / n / pitch;
+    }
+  }
+  if (lines.empty()) return out;
+
+  // Crossings of every edge with the lines, bucketed per line (half-open in v).
+  struct X {
+    double u;
+    uint32_t ring, edge;
+  };
+  std::vector<std::vector<X>> hits(lines.size());
+  for (uint32_t r = 0; r < rings.size(); ++r) {
+    const auto& pts = rings[r].pts;
+    size_t n = pts.size();
+    for (uint32_t i = 0; i < n; ++i) {
+      UV p = pts[i], q = pts[(i + 1) % n];
+      if (p.v == q.v) continue;
+      double lo = std::min(p.v, q.v), hi = std::max(p.v, q.v);
+      auto it = std::lower_bound(lines.begin(), lines.end(), lo);
+      for (; it != lines.end() && *it < hi; ++it) {
+        double u = p.u + (*it - p.v) * (q.u - p.u) / (q.v - p.v);
+        hits[static_cast<size_t>(it - lines.begin())].push_back({u, r, i});
+      }
+    }
+  }
+
+  // Runs of intervals on consecutive lines, linked by connectors along a ring.
+  struct Run {
+    std::vector<Interval> iv;
+    size_t last_line;
+  };
+  std::vector<Run> runs;
+  std::vector<size_t> open;  // runs that ended on the previous line
+  auto walk_ok = [&](const Interval& from, const Interval& to, bool right, double v0, double v1) {
+    uint32_t ring = right ? from.r1 : from.r0;
+    if (ring != (right ? to.r1 : to.r0)) return false;
+    const auto& pts = rings[ring].pts;
+    uint32_t n = static_cast<uint32_t>(pts.size());
+    uint32_t e_from = right ? from.e1 : from.e0, e_to = right ? to.e1 : to.e0;
+    uint32_t steps = right ? (e_to + n - e_from) % n : (e_from + n - e_to) % n;
+    for (uint32_t k = 0; k < steps; ++k) {
+      uint32_t vi = right ? (e_from + 1 + k) % n : (e_from + n - k) % n;
+      if (pts[vi].v < v0 - 1 || pts[vi].v > v1 + 1) return false;
+    }
+    return true;
+  };
+  for (size_t li = 0; li < lines.size(); ++li) {
+    auto& h = hits[li];
+    std::sort(h.begin(), h.end(), [](const X& x, const X& y) { return x.u < y.u; });
+    std::vector<size_t> next_open;
+    std::vector<char> taken(open.size(), 0);
+    for (size_t j = 0; j + 1 < h.size(); j += 2) {
+      Interval iv{h[j].u, h[j + 1].u, h[j].ring, h[j + 1].ring, h[j].edge, h[j + 1].edge};
+      bool linked = false;
+      for (size_t o = 0; o < open.size() && !linked; ++o) {
+        if (taken[o]) continue;
+        Run& run = runs[open[o]];
+        const Interval& prev = run.iv.back();
+        bool right = run.iv.size() % 2 == 1;  // odd count: the last line ran left to right
+        if (!walk_ok(prev, iv, right, lines[li - 1], lines[li])) continue;
+        run.iv.push_back(iv);
+        run.last_line = li;
+        taken[o] = 1;
+        next_open.push_back(open[o]);
+        linked = true;
+      }
+      if (!linked) {
+        runs.push_back({{iv}, li});
+        next_open.push_back(runs.size() - 1);
+      }
+    }
+    open = std::move(next_open);
+  }
+
+  // Runs to paths in bed coordinates.
+  auto to_xy = [&](UV p) {
+    return geo::Point(static_cast<coord_t>(std::llround(p.u * c - p.v * s)),
+                      static_cast<coord_t>(std::llround(p.u * s + p.v * c)));
+  };
+  for (const auto& run : runs) {
+    FillPath fp;
+    fp.pitch_ratio = pitch_ratio;
+    auto add = [&](UV p, Border b) {
+      geo::Point q = to_xy(p);
+      if (!fp.pts.empty()) {
+        if (fp.pts.back() == q) return;
+        fp.border.push_back(b);
+      }
+      fp.pts.push_back(q);
+    };
+    size_t li0 = run.last_line + 1 - run.iv.size();
+    for (size_t k = 0; k < run.iv.size(); ++k) {
+      const Interval& iv = run.iv[k];
+      double v = lines[li0 + k];
+      bool ltr = k % 2 == 0;
+      UV first{ltr ? iv.u0 : iv.u1, v}, last{ltr ? iv.u1 : iv.u0, v};
+      add(first, k == 0 ? Border::None : border_of(rings[ltr ? iv.r0 : iv.r1].kinds[ltr ? iv.e0 : iv.e1]));
+      add(last, Border::None);
+      if (k + 1 == run.iv.size()) break;
+      // Connector from this line's end to the next line's start, along the ring.
+      const Interval& nx = run.iv[k + 1];
+      const auto& ring = rings[ltr ? iv.r1 : iv.r0];
+      uint32_t n = static_cast<uint32_t>(ring.pts.size());
+      uint32_t e_from = ltr ? iv.e1 : iv.e0, e_to = ltr ? nx.e1 : nx.e0;
+      uint32_t steps = ltr ? (e_to + n - e_from) % n : (e_from + n - e_to) % n;
+      for (uint32_t t = 0; t < steps; ++t) {
+        uint32_t vi = ltr ? (e_from + 1 + t) % n : (e_from + n - t) % n;
+        uint32_t edge = ltr ? (vi + n - 1) % n : vi;  // the edge just walked along
+        add(ring.pts[vi], border_of(ring.kinds[edge]));
+      }
+    }
+    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
+  }
+  return out;
+}
+
+}  // namespace tranche::toolpath

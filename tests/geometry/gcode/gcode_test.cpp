@@ -1,0 +1,157 @@
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "geometry/gcode/layer_text.h"
+#include "geometry/gcode/numbers.h"
+#include "geometry/gcode/output_file.h"
+#include "geometry/gcode/print.h"
+#include "geometry/gcode/templates.h"
+#include "runtime/context/defaults.h"
+#include "runtime/context/overrides.h"
+#include "tests/support/fixtures.h"
+
+using namespace tranche;
+using namespace tranche::gcode;
+namespace fs = std::filesystem;
+
+namespace {
+std::string fixed(int64_t v, int d) {
+  std::string s;
+  append_fixed(s, v, d);
+  return s;
+}
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+geo::Ring square(double x0, double y0, double x1, double y1) {
+  return {geo::to_point(x0, y0), geo::to_point(x1, y0), geo::to_point(x1, y1), geo::to_point(x0, y1)};
+}
+std::vector<geo::Layer> cube_layers(int n, double size) {
+  std::vector<geo::Layer> layers(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    auto& l = layers[static_cast<size_t>(i)];
+    l.index = i;
+    l.z_bottom = 0.2 * i;
+    l.z_top = 0.2 * (i + 1);
+    geo::Island isl;
+    isl.shape.outer = square(0, 0, size, size);
+    l.islands.push_back(isl);
+  }
+  return layers;
+}
+}  // namespace
+
+TEST_CASE("numbers: minimal fixed-point words") {
+  CHECK(fixed(12500, 3) == "12.5");
+  CHECK(fixed(12000, 3) == "12");
+  CHECK(fixed(-50, 3) == "-0.05");
+  CHECK(fixed(1234, 5) == "0.01234");
+  CHECK(fixed(0, 5) == "0");
+  CHECK(fixed(-80000, 5) == "-0.8");
+}
+
+TEST_CASE("fan commands per flavour") {
+  CHECK(fan_command(schema::Flavor::Marlin, 1.0) == "M106 S255");
+  CHECK(fan_command(schema::Flavor::Marlin, 0.0) == "M107");
+  CHECK(fan_command(schema::Flavor::Klipper, 0.5) == "M106 S128");
+  CHECK(fan_command(schema::Flavor::RepRapFirmware, 0.5) == "M106 P0 S0.5");
+  CHECK(fan_command(schema::Flavor::RepRapFirmware, 0.0) == "M106 P0 S0");
+}
+
+TEST_CASE("output file: nothing at the destination until commit; no leftovers on failure") {
+  test::TempDir dir("gcode-out");
+  fs::path dest = dir / "out.gcode";
+  {
+    auto f = OutputFile::create(dest.string());
+    REQUIRE(f.ok());
+    REQUIRE(f->write("; header 0000\n").ok());
+    CHECK_FALSE(fs::exists(dest));
+    CHECK(fs::exists(f->temp_path()));
+  }  // destroyed without commit
+  CHECK_FALSE(fs::exists(dest));
+  CHECK(fs::is_empty(dir.path()));
+  {
+    auto f = OutputFile::create(dest.string());
+    REQUIRE(f.ok());
+    REQUIRE(f->write("; header 0000\n").ok());
+    REQUIRE(f->write(std::string(3 << 20, 'x')).ok());  // beyond the buffer: patch must reach the file
+    REQUIRE(f->patch(9, "1234").ok());
+    REQUIRE(f->commit().ok());
+  }
+  CHECK(read(dest).substr(0, 14) == "; header 1234\n");
+  CHECK(fs::file_size(dest) == 14 + (3u << 20));
+  auto bad = OutputFile::create((dir / "missing" / "x.gcode").string());
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().message.find("does not exist") != std::string::npos);
+}
+
+TEST_CASE("templates: placeholders from properties and fields, clear errors") {
+  ctx::Context c;
+  c.set(schema::FieldId::PrintHeight, 12.5);
+  auto props = ctx::PropertyValues::schema_defaults();
+  props[schema::PropId::NozzleTemp] = 215;
+  auto r = render_template("M104 S{nozzle_temp}\n; h={print.height} {{x}}", "t.gcode", c, props);
+  REQUIRE(r.ok());
+  CHECK(*r == "M104 S215\n; h=12.5 {x}\n");
+  auto e = render_template("ok\nM104 S{nozle_temp}\n", "t.gcode", c, props);
+  REQUIRE_FALSE(e.ok());
+  CHECK(e.error().where == "t.gcode:2");
+  CHECK(e.error().message.find("nozzle_temp") != std::string::npos);
+  CHECK_FALSE(render_template("M104 S{nozzle_temp", "t.gcode", c, props).ok());
+  for (auto f : {schema::Flavor::Marlin, schema::Flavor::Klipper, schema::Flavor::RepRapFirmware}) {
+    std::string file;
+    auto t = load_template((test::source_dir() / "stdlib").string(), f, "start", &file);
+    REQUIRE_MESSAGE(t.ok(), file);
+    CHECK(render_template(*t, file, c, props).ok());
+    CHECK(load_template((test::source_dir() / "stdlib").string(), f, "end").ok());
+  }
+}
+
+TEST_CASE("durations as PrusaSlicer writes them") {
+  CHECK(format_duration(8) == "8s");
+  CHECK(format_duration(27 * 60 + 8) == "27m 8s");
+  CHECK(format_duration(3600 + 120 + 3) == "1h 2m 3s");
+  CHECK(format_duration(86400 + 3600) == "1d 1h 0m 0s");
+}
+
+TEST_CASE("write_gcode: a small cube gives a complete file with header values filled in") {
+  test::TempDir dir("gcode-cube");
+  auto layers = cube_layers(10, 10);
+  ctx::BuiltinDefaults defaults;
+  auto over = ctx::Overrides::parse({{"skirt_loops", "0"}});
+  REQUIRE(over.ok());
+  GcodeJob job;
+  job.output = (dir / "cube.gcode").string();
+  job.layers = layers;
+  job.rules.defaults = &defaults;
+  job.rules.decider = &*over;
+  job.stdlib = (test::source_dir() / "stdlib").string();
+  Report report;
+  auto r = write_gcode(job, report);
+  REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
+  CHECK(r->layers == 10);
+  CHECK(r->filament_mm > 0);
+  CHECK(r->time_s > 0);
+  std::string g = read(job.output);
+  CHECK(g.find(";LAYER_COUNT:10") != std::string::npos);
+  CHECK(g.find(";LAYER:9\n") != std::string::npos);
+  CHECK(g.find(";TYPE:External perimeter") != std::string::npos);
+  CHECK(g.find(";TYPE:Top solid infill") != std::string::npos);
+  CHECK(g.find(";TYPE:Internal infill") != std::string::npos);
+  CHECK(g.find("M82") != std::string::npos);
+  // The patched header agrees with the footer.
+  auto footer = g.find("; filament used [mm] = ", g.size() - 400);
+  REQUIRE(footer != std::string::npos);
+  std::string value = g.substr(footer + 23, g.find('\n', footer) - footer - 23);
+  CHECK(g.find("; filament used [mm] = " + value) < 300);
+  CHECK(g.find("; estimated printing time (normal mode) = " + format_duration(r->time_s)) < 200);
+  // Fan: off on layer 0 (the template's M107), on from layer 1.
+  CHECK(g.find("M106 S255") > g.find(";LAYER:1\n"));
+  CHECK(g.find("M106 S255") < g.find(";LAYER:2\n"));
+}

@@ -1,0 +1,165 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "fixtures.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/perimeters.h"
+#include "geometry/toolpath/zigzag.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+using doctest::Approx;
+
+namespace {
+double dist_to_segment_mm(const geo::Point& p, const geo::Point& a, const geo::Point& b) {
+  double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
+  double px = geo::to_mm(p.X), py = geo::to_mm(p.Y);
+  double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / l2, 0.0, 1.0) : 0;
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+double dist_to_ring_mm(const geo::Point& p, const geo::Ring& r) {
+  double d = 1e9;
+  for (size_t i = 0; i < r.size(); ++i) d = std::min(d, dist_to_segment_mm(p, r[i], r[(i + 1) % r.size()]));
+  return d;
+}
+}  // namespace
+
+TEST_CASE("perimeters: loops at w/2 and w/2 + spacing from the outline, fill region beyond") {
+  geo::Rings sq{test::rect(0, 0, 20, 20)};
+  PerimeterSpec spec;
+  auto per = make_perimeters(sq, spec);
+  REQUIRE(per.loops.size() == 2);
+  CHECK(per.loops[0].depth == 0);
+  CHECK(per.loops[1].depth == 1);
+  const double s = 0.45 - 0.2 * (1 - M_PI / 4);
+  for (const auto& p : per.loops[0].ring) CHECK(dist_to_ring_mm(p, sq[0]) == Approx(0.225).epsilon(1e-4));
+  // The second loop is opened (corners rounded by 0.3·spacing), never closer than its offset.
+  for (const auto& p : per.loops[1].ring) {
+    CHECK(dist_to_ring_mm(p, sq[0]) >= 0.225 + s - 1e-4);
+    CHECK(dist_to_ring_mm(p, sq[0]) <= 0.225 + s + 0.3 * s * (std::sqrt(2.0) - 1) + 1e-4);
+  }
+  // The fill region keeps one spacing from the inner loop, less the overlap.
+  double expect = 0.225 + s + s - 0.15 * 0.45;
+  double side = 20 - 2 * expect;
+  CHECK(area_mm2(per.fill_region) == Approx(side * side).epsilon(2e-3));
+}
+
+TEST_CASE("perimeters: a hole gets its own loops, clockwise") {
+  geo::Rings ring{test::rect(0, 0, 20, 20), test::rect(8, 8, 12, 12, false)};
+  auto per = make_perimeters(ring, PerimeterSpec{});
+  int holes = 0;
+  for (const auto& l : per.loops) holes += l.hole ? 1 : 0;
+  CHECK(holes == 2);
+  for (const auto& l : per.loops) CHECK(ClipperLib::Orientation(l.ring) == !l.hole);
+}
+
+TEST_CASE("perimeters: in a part too thin for two loops the second vanishes instead of overlapping") {
+  // 1.0 mm wide: the outer loop fits (its two sides 0.55 mm apart), a second would overlap it.
+  geo::Rings thin{test::rect(0, 0, 20, 1.0)};
+  auto per = make_perimeters(thin, PerimeterSpec{});
+  REQUIRE(!per.loops.empty());
+  for (const auto& l : per.loops) CHECK(l.depth == 0);
+  CHECK(per.fill_region.empty());
+}
+
+TEST_CASE("zig-zag: a convex cell is filled by one continuous path along its border") {
+  geo::Rings sq{test::rect(0, 0, 10, 10)};
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 1.0;
+  auto paths = zigzag(fill_shape(sq, geo::EdgeKind::Real), spec);
+  REQUIRE(paths.size() == 1);
+  const auto& p = paths[0];
+  REQUIRE(p.border.size() + 1 == p.pts.size());
+  int lines = 0, connectors = 0;
+  for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+    const auto &a = p.pts[i], &b = p.pts[i + 1];
+    if (p.border[i] == schema::Border::None) {
+      ++lines;
+      CHECK(a.Y == b.Y);  // fill lines run at the fill angle (0°)
+      CHECK(std::abs(geo::to_mm(b.X - a.X)) == Approx(10).epsilon(1e-6));
+    } else {
+      ++connectors;
+      CHECK(p.border[i] == schema::Border::Real);
+      CHECK((a.X == b.X && (a.X == 0 || a.X == geo::to_units(10))));  // along the side
+    }
+  }
+  CHECK(lines == 11);  // 10 mm at pitch 1: border to border
+  CHECK(connectors == 10);
+}
+
+TEST_CASE("zig-zag: sparse lines sit on a bed grid so neighbouring cells line up") {
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 2.0;
+  spec.bed_grid = true;
+  auto a = zigzag(fill_shape({test::rect(0.3, 0.3, 5, 9.7)}, geo::EdgeKind::Real), spec);
+  REQUIRE(a.size() == 1);
+  for (size_t i = 0; i + 1 < a[0].pts.size(); ++i)
+    if (a[0].border[i] == schema::Border::None) CHECK(a[0].pts[i].Y % geo::to_units(2.0) == 0);
+}
+
+TEST_CASE("zig-zag: artificial edges are kept half a bead away, real ones followed") {
+  geo::Ring sq = test::rect(0, 0, 10, 10);
+  FillShape shape = fill_shape({sq}, geo::EdgeKind::Real);
+  shape.kinds[0][1] = geo::EdgeKind::Artificial;  // the right side (10,0)-(10,10) is a cut
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 0.5;
+  spec.artificial_inset_mm = 0.2;
+  auto paths = zigzag(shape, spec);
+  REQUIRE(paths.size() == 1);
+  double max_x = 0, min_x = 100;
+  bool artificial_connector = false;
+  for (size_t i = 0; i < paths[0].pts.size(); ++i) {
+    max_x = std::max(max_x, geo::to_mm(paths[0].pts[i].X));
+    min_x = std::min(min_x, geo::to_mm(paths[0].pts[i].X));
+    if (i < paths[0].border.size() && paths[0].border[i] == schema::Border::Artificial)
+      artificial_connector = true;
+  }
+  CHECK(max_x == Approx(9.8));
+  CHECK(min_x == Approx(0));
+  CHECK(artificial_connector);
+}
+
+TEST_CASE("zig-zag: a U shape (not monotone) needs more than one run; every point stays inside") {
+  geo::Ring u{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 10), geo::to_point(7, 10),
+              geo::to_point(7, 3), geo::to_point(3, 3),  geo::to_point(3, 10),  geo::to_point(0, 10)};
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 0.5;
+  auto paths = zigzag(fill_shape({u}, geo::EdgeKind::Real), spec);
+  CHECK(paths.size() >= 2);
+  EdgeGrid g(geo::Rings{u});
+  for (const auto& p : paths)
+    for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+      geo::Point m((p.pts[i].X + p.pts[i + 1].X) / 2, (p.pts[i].Y + p.pts[i + 1].Y) / 2);
+      CHECK((g.inside(m) || g.along(p.pts[i], p.pts[i + 1], 10)));
+    }
+  // The same shape at 90° is monotone: one path.
+  spec.angle_deg = 90;
+  CHECK(zigzag(fill_shape({u}, geo::EdgeKind::Real), spec).size() == 1);
+}
+
+TEST_CASE("zig-zag: any angle, the lines keep the requested direction and pitch") {
+  FillSpec spec;
+  spec.angle_deg = 45;
+  spec.pitch_mm = 0.8;
+  auto paths = zigzag(fill_shape({test::rect(0, 0, 10, 10)}, geo::EdgeKind::Real), spec);
+  REQUIRE(paths.size() == 1);
+  const auto& p = paths[0];
+  std::vector<double> offsets;
+  for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+    if (p.border[i] != schema::Border::None) continue;
+    double dx = double(p.pts[i + 1].X - p.pts[i].X), dy = double(p.pts[i + 1].Y - p.pts[i].Y);
+    if (std::hypot(dx, dy) < 1e5) continue;
+    CHECK(std::abs(std::abs(std::atan2(dy, dx)) * 180 / M_PI - (dx > 0 ? 45 : 135)) < 0.01);
+    offsets.push_back((-geo::to_mm(p.pts[i].X) + geo::to_mm(p.pts[i].Y)) / std::sqrt(2.0));
+  }
+  std::sort(offsets.begin(), offsets.end());
+  for (size_t i = 1; i < offsets.size(); ++i)
+    CHECK(offsets[i] - offsets[i - 1] == Approx(0.8 * p.pitch_ratio).epsilon(1e-3));
+}

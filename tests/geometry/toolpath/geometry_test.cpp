@@ -1,0 +1,91 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "fixtures.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/flow.h"
+#include "geometry/toolpath/motion.h"
+#include "geometry/toolpath/order.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+using doctest::Approx;
+
+TEST_CASE("flow: the stadium cross-section and bead spacing of Slic3r/PrusaSlicer") {
+  const double w = 0.45, h = 0.2;
+  CHECK(bead_area_mm2(w, h) == Approx((w - h) * h + std::numbers::pi * 0.01));
+  CHECK(bead_spacing_mm(w, h) == Approx(w - h * (1 - std::numbers::pi / 4)));
+  CHECK(bead_spacing_mm(w, w, h) == Approx(bead_spacing_mm(w, h)));
+  // E per mm: bead area over the filament's cross-section.
+  CHECK(e_per_mm(w, h, 1.0, 1.75) == Approx(bead_area_mm2(w, h) / (std::numbers::pi * 1.75 * 1.75 / 4)));
+  CHECK(e_per_mm(w, h, 0.5, 1.75) == Approx(0.5 * e_per_mm(w, h, 1.0, 1.75)));
+}
+
+TEST_CASE("edge grid: crossing, inside and covered fraction against a square with a hole") {
+  geo::Rings rings{test::rect(0, 0, 10, 10), test::rect(4, 4, 6, 6, false)};
+  EdgeGrid g(rings);
+  CHECK(g.inside(geo::to_point(1, 1)));
+  CHECK_FALSE(g.inside(geo::to_point(5, 5)));
+  CHECK_FALSE(g.inside(geo::to_point(11, 5)));
+  CHECK_FALSE(g.inside(geo::to_point(-1, 5)));
+  CHECK(g.crosses(geo::to_point(1, 5), geo::to_point(9, 5)));  // through the hole
+  CHECK_FALSE(g.crosses(geo::to_point(1, 1), geo::to_point(9, 2)));
+  CHECK(g.crosses(geo::to_point(5, -1), geo::to_point(5, 1)));
+  CHECK(g.inside_fraction(geo::to_point(-2, 1), geo::to_point(2, 1)) == Approx(0.5));
+  CHECK(g.inside_fraction(geo::to_point(1, 5), geo::to_point(9, 5)) == Approx(0.75));
+  CHECK(g.along(geo::to_point(2, 0), geo::to_point(3, 0), 10));
+  CHECK_FALSE(g.along(geo::to_point(2, 1), geo::to_point(3, 1), 10));
+}
+
+TEST_CASE("clip: offsets are exact erosions; simplify keeps corners") {
+  geo::Rings sq{test::rect(0, 0, 10, 10)};
+  CHECK(area_mm2(offset(sq, -1)) == Approx(64).epsilon(1e-6));
+  CHECK(offset(sq, -5.01).empty());
+  CHECK(offset_open(geo::Rings{test::rect(0, 0, 10, 0.5)}, 0, 0.3).empty());  // thinner than 0.6: gone
+  geo::Ring dense;
+  for (int i = 0; i < 100; ++i) dense.push_back(geo::to_point(i * 0.1, 0));
+  dense.push_back(geo::to_point(10, 10));
+  dense.push_back(geo::to_point(0, 10));
+  CHECK(simplify(dense, 1000).size() == 4);
+}
+
+TEST_CASE("seams: rear picks the largest y, nearest the closest vertex, aligned prefers corners") {
+  geo::Ring r{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 10), geo::to_point(5, 11),
+              geo::to_point(0, 10)};
+  CHECK(choose_seam(r, schema::Seam::Rear, {}) == 3);
+  CHECK(choose_seam(r, schema::Seam::Nearest, geo::to_point(9, 1)) == 1);
+  // An L-shape's concave corner wins over a slightly more rearward convex one.
+  geo::Ring l{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 5),
+              geo::to_point(5, 5), geo::to_point(5, 6),  geo::to_point(0, 6)};
+  CHECK(choose_seam(l, schema::Seam::Aligned, {}) == 3);
+  auto open = open_loop_at(r, 2);
+  CHECK(open.size() == 6);
+  CHECK(open.front() == open.back());
+  CHECK(open.front() == r[2]);
+}
+
+TEST_CASE("chain: nearest end first, reversing paths when their far end is closer") {
+  geo::Ring a{geo::to_point(0, 0), geo::to_point(10, 0)};
+  geo::Ring b{geo::to_point(20, 0), geo::to_point(11, 0)};
+  auto order = chain_open({&b, &a}, geo::to_point(-1, 0));
+  REQUIRE(order.size() == 2);
+  CHECK(order[0].index == 1);
+  CHECK_FALSE(order[0].reversed);
+  CHECK(order[1].index == 0);
+  CHECK(order[1].reversed);
+}
+
+TEST_CASE("motion: trapezoid times") {
+  // 100 mm at 50 mm/s from and to rest, 1000 mm/s²: 2 s cruise + 0.05 s extra for the ramps.
+  CHECK(trapezoid_time(100, 50, 0, 0, 1000) == Approx(2.05));
+  // Too short to reach cruise speed: a triangle.
+  CHECK(trapezoid_time(1, 100, 0, 0, 1000) == Approx(2 * std::sqrt(1.0 / 1000)));
+  MotionClock c;
+  c.start_at(geo::to_point(0, 0));
+  c.move(geo::to_point(50, 0), 50, true);
+  c.move(geo::to_point(100, 0), 50, true);  // straight on: no slowdown at the junction
+  CHECK(c.finish() == Approx(2.05));
+}
