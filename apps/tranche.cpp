@@ -1,7 +1,9 @@
 // tranche: the slicer's command line. Parses flags into SliceOptions and runs the pipeline.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -22,6 +24,10 @@ options:
   --export-layers FILE         write every layer's polygons as JSON
   --overlap MODE               additive (default), boolean, or subtractive (SVG only)
   --fill-angle-script FILE     Python script defining fill_angle(ctx) -> degrees (trusted code)
+  --svg-layers N               layers a flat SVG drawing is extruded to (default 10)
+  --svg-height MM              height a flat SVG drawing is extruded to (instead of --svg-layers)
+  --svg-tolerance MM           largest distance between an SVG curve and its polyline (default 0.01)
+  --background COLOR           the colour that erases with --overlap subtractive (default white)
   --strict                     treat geometry coherence warnings as errors
   -q, --quiet                  no progress output
   -h, --help                   this text
@@ -79,6 +85,23 @@ int main(int argc, char** argv) {
       else return usage_error("--overlap must be additive, boolean or subtractive, not '" + v + "'");
     } else if (a == "--fill-angle-script") {
       if (!value(opt.fill_angle_script)) return usage_error("--fill-angle-script needs a file name");
+    } else if (a == "--svg-layers" || a == "--svg-height" || a == "--svg-tolerance") {
+      if (!value(v)) return usage_error(std::string(a) + " needs a number");
+      char* end = nullptr;
+      double x = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(x > 0) || x > 1e5)
+        return usage_error(std::string(a) + " needs a positive number, not '" + v + "'");
+      if (a == "--svg-layers") {
+        if (x != std::floor(x))
+          return usage_error("--svg-layers needs a whole number of layers, not '" + v + "'");
+        opt.svg_layers = static_cast<int>(x);
+      } else if (a == "--svg-height") {
+        opt.svg_height_mm = x;
+      } else {
+        opt.svg_tolerance_mm = x;
+      }
+    } else if (a == "--background") {
+      if (!value(opt.background)) return usage_error("--background needs a colour");
     } else if (a == "--strict") {
       opt.strict = true;
     } else if (a == "-q" || a == "--quiet") {

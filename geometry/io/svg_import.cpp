@@ -81,6 +81,7 @@ class Reader {
   size_t elements_ = 0, points_ = 0, shape_elements_ = 0;
   bool warned_css_ = false;
   bool stack_ = false;  // reading the layer groups of a layer stack
+  Vec2 viewport_;       // the nearest viewport's size in user units, for percentages (0: unknown)
 };
 
 Result<Affine> Reader::transform_of(pugi::xml_node n) {
@@ -99,6 +100,19 @@ Result<Affine> Reader::transform_of(pugi::xml_node n) {
 Result<double> Reader::length(pugi::xml_node n, const char* attr, double fallback) {
   pugi::xml_attribute a = n.attribute(attr);
   if (!a) return fallback;
+  std::string_view text = svg::trim(a.value());
+  if (!text.empty() && text.back() == '%' && viewport_.x > 0 && viewport_.y > 0) {
+    // Percentages refer to the viewport: its width for x, its height for y, its normalised
+    // diagonal for radii of circles.
+    auto pct = svg::parse_number(text.substr(0, text.size() - 1));
+    if (pct) {
+      std::string_view name = attr;
+      double ref = name == "r" ? std::hypot(viewport_.x, viewport_.y) / std::sqrt(2.0)
+                   : (name.find('y') != std::string_view::npos || name == "height") ? viewport_.y
+                                                                                    : viewport_.x;
+      return *pct / 100 * ref;
+    }
+  }
   auto v = svg::parse_length_px(a.value());
   if (!v)
     return Error{src_.at_attr(n, attr, 0),
@@ -205,7 +219,11 @@ Status Reader::walk(pugi::xml_node n, const Affine& ctm, const Style& parent, st
   if (name == "svg") {  // nested viewport: its x, y, and viewBox mapping
     auto vp = svg::viewport_of(n, src_, false);
     if (!vp) return vp.error();
-    return walk_children(n, m * vp->user_to_px, st, out, depth);
+    Vec2 outer = viewport_;
+    if (vp->user_width > 0 && vp->user_height > 0) viewport_ = {vp->user_width, vp->user_height};
+    Status s = walk_children(n, m * vp->user_to_px, st, out, depth);
+    viewport_ = outer;
+    return s;
   }
   if (name == "use") return use(n, m, st, out, depth);
   if (name == "line") {
@@ -439,6 +457,7 @@ Result<SvgModel> Reader::read(const pugi::xml_document& doc) {
   SvgModel model;
   model.page_width_mm = vp->width_px * svg::kMmPerPx;
   model.page_height_mm = vp->height_px * svg::kMmPerPx;
+  viewport_ = {vp->user_width, vp->user_height};
   // User units -> px -> mm, with y flipped about the page height: (x, y) -> (x, H - y).
   Affine to_mm = Affine{svg::kMmPerPx, 0, 0, -svg::kMmPerPx, 0, model.page_height_mm} * vp->user_to_px;
   auto t = transform_of(root);  // SVG 2 allows a transform on the root

@@ -126,6 +126,8 @@ Result<Viewport> viewport_of(pugi::xml_node el, const SourceMap& src, bool root)
   }
   vp.width_px = vw;
   vp.height_px = vh;
+  vp.user_width = has_vb ? vb[2] : vw;
+  vp.user_height = has_vb ? vb[3] : vh;
 
   if (has_vb && vw > 0 && vh > 0) {
     std::string par = el.attribute("preserveAspectRatio").value();

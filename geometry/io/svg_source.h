@@ -35,6 +35,8 @@ struct Viewport {
   Affine user_to_px;    // maps the element's user units to its parent's px (SVG user units)
   double width_px = 0;  // the viewport size; 0 when neither width/height nor viewBox give it
   double height_px = 0;
+  double user_width = 0;  // the same size in the element's own user units (percentages refer to it)
+  double user_height = 0;
 };
 
 // Reads width, height, viewBox and preserveAspectRatio of an <svg> element. A nested <svg> also

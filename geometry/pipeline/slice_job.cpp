@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include <fmt/format.h>
 
+#include "geometry/fillangle/fill_angle.h"
 #include "geometry/io/layers_json.h"
 #include "geometry/io/svg_export.h"
+#include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/progress.h"
 #include "geometry/slice/layer_plan.h"
@@ -24,15 +27,13 @@ bool ends_with_svg(const std::string& path) {
 }
 
 // Options that later stages will honour; until then the user hears that they were ignored.
-void warn_unapplied(const SliceOptions& o, Report& report) {
+void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
   if (!o.rules.empty() || !o.sets.empty())
     report.warn("not-implemented", "",
                 "--rules and --set are not applied yet: layers are 0.2 mm, first layer 0.2 mm");
-  if (o.overlap != OverlapMode::Additive)
+  if (o.overlap != OverlapMode::Additive && !svg)
     report.warn("not-implemented", "",
                 "--overlap is not applied yet: overlapping shells are united (additive)");
-  if (!o.fill_angle_script.empty())
-    report.warn("not-implemented", "", "--fill-angle-script is not applied yet");
 }
 
 // Moves the model so that its lowest point is at z = 0; errors for meshes with nothing to slice.
@@ -71,6 +72,73 @@ void warn_topology(const geo::MeshTopology& t, const std::string& file, Report& 
                     t.misoriented_edges));
 }
 
+// SVG input: a layer stack keeps its own layers; a flat drawing is repeated on every layer of a
+// prism --svg-height mm high, or of --svg-layers layers (10 by default).
+Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report) {
+  geo::SvgImportOptions so;
+  so.tolerance_mm = o.svg_tolerance_mm;
+  so.overlap = o.overlap == OverlapMode::Boolean       ? geo::SvgOverlap::Boolean
+               : o.overlap == OverlapMode::Subtractive ? geo::SvgOverlap::Subtractive
+                                                       : geo::SvgOverlap::Additive;
+  so.background = o.background;
+  auto model = geo::load_svg(o.model, so, report);
+  if (!model) return model.error();
+  std::vector<geo::Layer> layers;
+  if (model->layer_stack) {
+    if (o.svg_layers > 0 || o.svg_height_mm > 0)
+      report.warn("svg-stack-height", o.model,
+                  "--svg-layers and --svg-height are ignored: the layer stack has its own layers");
+    for (size_t i = 0; i < model->layers.size(); ++i) {
+      geo::Layer l;
+      l.index = static_cast<int>(i);
+      l.z_bottom = model->layers[i].z_bottom;
+      l.z_top = model->layers[i].z_top;
+      l.loops = geo::to_rings(model->layers[i].polygons);
+      layers.push_back(std::move(l));
+    }
+    return layers;
+  }
+  geo::LayerPlanParams params;
+  const int n = o.svg_layers > 0 ? o.svg_layers : 10;
+  const double height =
+      o.svg_height_mm > 0 ? o.svg_height_mm : params.first_layer_height + (n - 1) * params.layer_height;
+  auto planned = geo::plan_layers(height, params);
+  if (!planned) return Error{o.model, planned.error().to_string()};
+  const geo::Rings loops = geo::to_rings(model->layers[0].polygons);
+  for (auto& l : *planned) l.loops = loops;
+  return planned;
+}
+
+// The stages after slicing, shared by STL and SVG input.
+Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summary,
+                            geo::FillAngleScript* script, const SliceOptions& options, Progress& progress) {
+  progress.start("union");
+  if (auto st = geo::make_islands(layers); !st) return st.error();
+  progress.finish();
+
+  if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
+    progress.start("fill angles");
+    if (auto st = geo::apply_fill_angle_script(*script, layers); !st) return st.error();
+    progress.finish();
+  }
+
+  summary.layers = static_cast<int>(layers.size());
+  if (!options.export_svg.empty()) {
+    progress.start("svg");
+    if (auto st = geo::write_layers_svg(options.export_svg, layers, options.model); !st) return st.error();
+    progress.finish();
+    summary.written.push_back(options.export_svg);
+  }
+  if (!options.export_layers.empty()) {
+    progress.start("json");
+    if (auto st = geo::write_layers_json(options.export_layers, layers, options.model); !st)
+      return st.error();
+    progress.finish();
+    summary.written.push_back(options.export_layers);
+  }
+  return summary;
+}
+
 }  // namespace
 
 Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
@@ -79,10 +147,25 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
                  "G-code output is not implemented yet; use --export-svg/--export-layers"};
   if (options.export_svg.empty() && options.export_layers.empty())
     return Error{"", "nothing to write: give --export-svg FILE and/or --export-layers FILE"};
-  if (ends_with_svg(options.model))
-    return Error{options.model, "SVG input is not wired into `tranche slice` yet"};
-  warn_unapplied(options, report);
+  const bool svg = ends_with_svg(options.model);
+  warn_unapplied(options, svg, report);
   Progress progress(!options.quiet);
+
+  std::unique_ptr<geo::FillAngleScript> script;  // loaded first: a broken script fails before slicing
+  if (!options.fill_angle_script.empty()) {
+    auto s = geo::FillAngleScript::load(options.fill_angle_script);
+    if (!s) return s.error();
+    script = std::move(*s);
+  }
+
+  SliceSummary summary;
+  if (svg) {
+    progress.start("load");
+    auto layers = svg_layers(options, report);
+    if (!layers) return layers.error();
+    progress.finish(fmt::format("{} layers", layers->size()));
+    return finish(*layers, summary, script.get(), options, progress);
+  }
 
   progress.start("load");
   auto mesh = geo::load_stl(options.model, report);
@@ -101,28 +184,8 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   auto stats = geo::slice_mesh(*mesh, topology, *layers, params, report);
   if (!stats) return Error{options.model + ": " + stats.error().where, stats.error().message};
   progress.finish(fmt::format("{} layers, {} loops", layers->size(), stats->loops));
-
-  progress.start("union");
-  if (auto st = geo::make_islands(*layers); !st) return st.error();
-  progress.finish();
-
-  SliceSummary summary;
-  summary.layers = static_cast<int>(layers->size());
   summary.triangles = mesh->triangles.size();
-  if (!options.export_svg.empty()) {
-    progress.start("svg");
-    if (auto st = geo::write_layers_svg(options.export_svg, *layers, options.model); !st) return st.error();
-    progress.finish();
-    summary.written.push_back(options.export_svg);
-  }
-  if (!options.export_layers.empty()) {
-    progress.start("json");
-    if (auto st = geo::write_layers_json(options.export_layers, *layers, options.model); !st)
-      return st.error();
-    progress.finish();
-    summary.written.push_back(options.export_layers);
-  }
-  return summary;
+  return finish(*layers, summary, script.get(), options, progress);
 }
 
 }  // namespace tranche::pipeline

@@ -23,6 +23,10 @@ struct SliceOptions {
   std::string export_layers;                // --export-layers (JSON)
   OverlapMode overlap = OverlapMode::Additive;
   std::string fill_angle_script;            // --fill-angle-script (Python)
+  int svg_layers = 0;                       // --svg-layers: flat SVG layer count (0: 10, or --svg-height)
+  double svg_height_mm = 0;                 // --svg-height: flat SVG extrusion height, mm (0: by layers)
+  double svg_tolerance_mm = 0.01;           // --svg-tolerance: largest curve-to-polyline gap, mm
+  std::string background = "white";         // --background: the colour that erases (subtractive)
   bool strict = false;                      // --strict: coherence warnings become errors
   bool quiet = false;                       // --quiet: no progress on stderr
 };

@@ -140,6 +140,12 @@ TEST_CASE("units: the root size and viewBox map user units to millimetres") {
   // Lengths on shapes carry units too (in user space: 1mm = 96/25.4 user units).
   CHECK(area_of(doc(R"(width="100mm" height="100mm" viewBox="0 0 100 100")",
                     R"(<rect width="10mm" height="1cm"/>)")) == doctest::Approx(std::pow(10 * 96 / 25.4, 2)));
+  // Percentages refer to the viewport in user units (a background rect of 100% is common).
+  CHECK(area_of(doc(R"(width="100mm" height="50mm" viewBox="0 0 200 100")",
+                    R"(<rect width="100%" height="50%"/>)")) == doctest::Approx(100 * 25));
+  CHECK(area_of(doc(R"(width="100mm" height="100mm" viewBox="0 0 100 100")",
+                    R"(<circle cx="50%" cy="50%" r="10%"/>)")) ==
+        doctest::Approx(std::numbers::pi * 100).epsilon(0.003));
   // preserveAspectRatio: a 100 x 50 mm page over a square viewBox scales uniformly by default
   // (meet: 0.5 mm per unit, centred) and stretches with "none".
   CHECK(area_of(doc(R"(width="100mm" height="50mm" viewBox="0 0 100 100")", rect)) == doctest::Approx(25));
