@@ -50,7 +50,7 @@ uint64_t vertex_key(uint32_t v) { return (static_cast<uint64_t>(v) << 1) | 1; }
 struct Segment {
   uint64_t from, to;
   Point a, b;
-  uint32_t tri;
+  uint32_t next_tri;  // the triangle across the exit edge when exactly two share it, else kNone
 };
 
 // A gap wider than the tolerance bridged by a straight edge.
@@ -194,13 +194,16 @@ LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t*
     const auto& tri = mesh.triangles[t];
     auto cut = cut_triangle({mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]}, z);
     if (!cut) continue;
+    const MeshTopology::Links& links = topo.triangles[t];
     auto key = [&](const Crossing& c) {
-      return c.kind == Crossing::Vertex ? vertex_key(tri[c.index]) : edge_key(topo.tri_edges[t][c.index]);
+      return c.kind == Crossing::Vertex ? vertex_key(tri[c.index]) : edge_key(links.edge[c.index]);
     };
+    const uint32_t next_tri = cut->to.kind == Crossing::Edge ? links.neighbor[cut->to.index] : kNone;
     Segment seg{key(cut->from), key(cut->to), to_point(cut->from.x, cut->from.y),
-                to_point(cut->to.x, cut->to.y), t};
+                to_point(cut->to.x, cut->to.y), next_tri};
     s.seg_of_tri[t] = static_cast<uint32_t>(s.segs.size());
-    const bool by_edge = !(seg.from & 1) && topo.edges[seg.from >> 1].count == 2;
+    // Entered through an edge shared by exactly two triangles: found through that neighbour.
+    const bool by_edge = cut->from.kind == Crossing::Edge && links.neighbor[cut->from.index] != kNone;
     if (!by_edge) s.by_key.emplace_back(seg.from, static_cast<uint32_t>(s.segs.size()));
     s.segs.push_back(seg);
   }
@@ -213,14 +216,10 @@ LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t*
   // there (back to `first` if possible: it closes the loop).
   auto next = [&](uint32_t cur, uint32_t first) -> uint32_t {
     const Segment& c = s.segs[cur];
-    if (!(c.to & 1)) {
-      const MeshTopology::Edge& e = topo.edges[c.to >> 1];
-      if (e.count == 2) {
-        const uint32_t other = e.t0 == c.tri ? e.t1 : e.t0;
-        const uint32_t n = s.seg_of_tri[other];
-        if (n != kNone && s.segs[n].from == c.to && (n == first || !s.used[n])) return n;
-        return kNone;
-      }
+    if (c.next_tri != kNone) {
+      const uint32_t n = s.seg_of_tri[c.next_tri];
+      if (n != kNone && s.segs[n].from == c.to && (n == first || !s.used[n])) return n;
+      return kNone;
     }
     auto it = std::lower_bound(s.by_key.begin(), s.by_key.end(), std::make_pair(c.to, uint32_t{0}));
     uint32_t found = kNone;
@@ -297,7 +296,7 @@ Result<SliceStats> slice_mesh(const Mesh& mesh, const MeshTopology& topo, std::v
         lo = std::min(lo, mesh.vertices[tri[k]].z), hi = std::max(hi, mesh.vertices[tri[k]].z);
       first[t] = static_cast<uint32_t>(std::upper_bound(plane.begin(), plane.end(), lo) - plane.begin());
       last[t] = static_cast<uint32_t>(std::upper_bound(plane.begin(), plane.end(), hi) - plane.begin());
-      if (topo.tri_edges[t][0] == kNone) last[t] = first[t];  // degenerate
+      if (topo.triangles[t].edge[0] == kNone) last[t] = first[t];  // degenerate
     }
   });
   std::vector<size_t> offset(nl + 1, 0);

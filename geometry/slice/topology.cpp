@@ -9,7 +9,8 @@ namespace tranche::geo {
 MeshTopology build_topology(const Mesh& mesh) {
   MeshTopology topo;
   const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
-  topo.tri_edges.assign(nt, {MeshTopology::kNone, MeshTopology::kNone, MeshTopology::kNone});
+  constexpr uint32_t kNone = MeshTopology::kNone;
+  topo.triangles.assign(nt, {{kNone, kNone, kNone}, {kNone, kNone, kNone}});
 
   // Counting sort of the half-edges by their lower vertex id, then a small sort per vertex by the
   // upper id: equal (lower, upper) pairs become one edge.
@@ -57,7 +58,11 @@ MeshTopology build_topology(const Mesh& mesh) {
       e.count = j - i;
       e.t0 = halves[i].half / 3;
       if (j - i >= 2) e.t1 = halves[i + 1].half / 3;
-      for (uint32_t h = i; h < j; ++h) topo.tri_edges[halves[h].half / 3][halves[h].half % 3] = id;
+      for (uint32_t h = i; h < j; ++h) topo.triangles[halves[h].half / 3].edge[halves[h].half % 3] = id;
+      if (j - i == 2) {
+        topo.triangles[halves[i].half / 3].neighbor[halves[i].half % 3] = e.t1;
+        topo.triangles[halves[i + 1].half / 3].neighbor[halves[i + 1].half % 3] = e.t0;
+      }
       if (e.count == 1) ++topo.boundary_edges;
       if (e.count > 2) ++topo.nonmanifold_edges;
       if (e.count == 2) {

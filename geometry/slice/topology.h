@@ -19,10 +19,15 @@ struct MeshTopology {
     uint32_t count = 0;               // triangles using it: 2 on a closed manifold, 1 on a boundary
   };
 
+  // Per triangle, side k being the edge from vertex k to vertex (k + 1) % 3. Kept together so
+  // that slicing reads one cache line per triangle.
+  struct Links {
+    std::array<uint32_t, 3> edge;      // edge ids; all kNone for a degenerate triangle (skipped)
+    std::array<uint32_t, 3> neighbor;  // the other triangle when exactly two share the edge, else kNone
+  };
+
   std::vector<Edge> edges;
-  // tri_edges[t][k] is the edge from vertex k to vertex (k + 1) % 3 of triangle t; all kNone for
-  // a degenerate triangle (a vertex id repeated), which slicing ignores.
-  std::vector<std::array<uint32_t, 3>> tri_edges;
+  std::vector<Links> triangles;
 
   size_t boundary_edges = 0;        // used by one triangle: the mesh has a hole there
   size_t nonmanifold_edges = 0;     // used by three or more triangles
