@@ -390,3 +390,26 @@ TEST_CASE("the union of nothing, or of loops without area, is empty") {
   REQUIRE(u.ok());
   CHECK(u->empty());
 }
+
+SCENARIO("a flipped triangle in a fine mesh") {
+  const int n = 64;
+  Mesh m = cylinder(3, 5, n);  // sides 0.29 mm wide: under the 0.4 mm gap tolerance
+  size_t flipped = 0;
+  for (auto& t : m.triangles) {
+    if (m.vertices[t[0]].z != m.vertices[t[1]].z || m.vertices[t[1]].z != m.vertices[t[2]].z) {
+      std::swap(t[1], t[2]);
+      ++flipped;
+      break;
+    }
+  }
+  REQUIRE(flipped == 1);
+  CHECK(build_topology(m).misoriented_edges == 3);
+  Sliced s;
+  slice_all(m, s);
+  THEN("the outline is mended across it: full area, no open loop") {
+    const double ngon = 0.5 * n * 9 * std::sin(2 * kPi / n);
+    REQUIRE(s.layers.size() == 25);
+    for (const auto& l : s.layers) CHECK(layer_area(l) == doctest::Approx(ngon).epsilon(1e-6));
+    CHECK(s.report.empty());
+  }
+}
