@@ -1,0 +1,474 @@
+// Expression typing: operators, units, literals and constant folding.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "compiler/checker.h"
+#include "compiler/names.h"
+
+namespace tranche::compiler {
+
+using ast::Expr;
+using ast::ExprKind;
+using ast::Kind;
+using ast::Op;
+using ast::Type;
+using ast::Unit;
+
+namespace {
+
+const char* op_text(Op op) {
+  static const char* names[] = {"?",  "-",  "not", "+",  "-", "*",  "/",   "mod",
+                                "==", "!=", "<",   "<=", ">", ">=", "and", "or"};
+  return names[static_cast<size_t>(op)];
+}
+
+Unit unit_of(const Type& t) { return t.kind == Kind::Number ? t.unit : Unit{}; }
+
+// A plain constant zero takes any unit: `island.area > 0`, `x + 0`.
+bool is_zero(const Expr& e) { return e.constant && *e.constant == 0 && unit_of(e.type).plain(); }
+
+bool is_bare_name(const Expr& e) { return e.kind == ExprKind::Name; }
+
+}  // namespace
+
+Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
+  Type t;
+  switch (e.kind) {
+    case ExprKind::Number:
+      t = number(e);
+      break;
+    case ExprKind::Bool:
+      t = Type::boolean();
+      break;
+    case ExprKind::String:
+      sink_
+          .error("E0206", e.span, "a string is not a value here",
+                 "strings are only used by `gcode` and `comment`")
+          .help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
+      break;
+    case ExprKind::Name:
+      t = name(e, ctx, hint);
+      break;
+    case ExprKind::Member:
+      t = member(e, ctx);
+      break;
+    case ExprKind::LayerAccess:
+      t = layer_access(e, ctx);
+      break;
+    case ExprKind::Call:
+      t = call(e, ctx);
+      break;
+    case ExprKind::Unary: {
+      Type a = expr(*e.args[0], ctx);
+      if (a.is_error()) break;
+      if (e.op == Op::Neg) {
+        if (a.numeric())
+          t = a;
+        else
+          sink_.error("E0201", e.args[0]->span, fmt::format("`-` needs a number, found {}", a.describe()),
+                      "not a number");
+      } else {
+        if (a.kind == Kind::Bool)
+          t = a;
+        else
+          sink_.error("E0201", e.args[0]->span, fmt::format("`not` needs a boolean, found {}", a.describe()),
+                      "not true or false");
+      }
+      break;
+    }
+    case ExprKind::Binary:
+      t = binary(e, ctx);
+      break;
+    case ExprKind::InRange:
+      t = in_range(e, ctx);
+      break;
+    case ExprKind::InSet:
+      t = in_set(e, ctx);
+      break;
+    case ExprKind::If:
+      t = if_expr(e, ctx, hint);
+      break;
+  }
+  if (t.kind == Kind::Number && !t.unit.in_range()) {
+    sink_.error("E0209", e.span, fmt::format("the unit of this value, `{}`, is out of range", t.unit.name()),
+                "too many units multiplied together");
+    t = Type::error();
+  }
+  e.type = t;
+  for (const auto& a : e.args) {
+    e.stage = std::max(e.stage, a->stage);
+    e.level = std::max(e.level, a->level);
+  }
+  if (!t.is_error()) fold(e);
+  return e.type;
+}
+
+Type Checker::number(Expr& e) {
+  if (e.unit_text.empty()) return e.integer_literal ? Type::integer() : Type::number();
+  auto spelling = ast::parse_unit(e.unit_text);
+  if (!spelling) {
+    std::vector<std::string> all;
+    for (auto s : ast::unit_spellings()) all.emplace_back(s);
+    auto& d = sink_.error("E0106", e.unit_span, fmt::format("unknown unit `{}`", e.unit_text), "not a unit");
+    const std::string& u = e.unit_text;
+    if (u == "min" || u == "h" || u == "ms") {
+      d.help("times are written in seconds: `s`");
+    } else if (u == "cm" || u == "m" || u == "um" || u == "in" || u == "inch") {
+      d.help("lengths are written in millimetres: `mm`");
+    } else if (u == "K" || u == "F") {
+      d.help("temperatures are written in degrees Celsius: `°C` or `C`");
+    } else if (auto best = suggest(u, all)) {
+      d.help(fmt::format("did you mean `{}`?", *best));
+    }
+    d.note("units: mm, mm2, mm3, mm/s, mm/s2, mm3/s, deg (or °), s, °C (or C), %");
+    return Type::error();
+  }
+  e.number *= spelling->scale;
+  return Type::number(spelling->unit);
+}
+
+bool Checker::same_units(const Expr& a, const Expr& b, const ast::Span& op, std::string_view verb) {
+  Unit ua = unit_of(a.type), ub = unit_of(b.type);
+  if (ua == ub || is_zero(a) || is_zero(b)) return true;
+  auto& d = sink_.error("E0200", op, fmt::format("cannot {} {} and {}", verb, ua.quoted(), ub.quoted()),
+                        "the units differ");
+  d.label(a.span, ua.plain() ? "this has no unit" : fmt::format("this is in `{}`", ua.name()));
+  d.label(b.span, ub.plain() ? "this has no unit" : fmt::format("this is in `{}`", ub.name()));
+  const Expr& plain = ua.plain() ? a : b;
+  const Unit& other = ua.plain() ? ub : ua;
+  if ((ua.plain() || ub.plain()) && plain.kind == ExprKind::Number && plain.unit_text.empty())
+    d.help(fmt::format("give the number a unit: `{} {}`", sources_.text(plain.span), other.name()));
+  return false;
+}
+
+Type Checker::binary(Expr& e, ExprContext& ctx) {
+  switch (e.op) {
+    case Op::Eq:
+    case Op::Ne:
+    case Op::Lt:
+    case Op::Le:
+    case Op::Gt:
+    case Op::Ge:
+      return compare(e, ctx);
+    default:
+      break;
+  }
+  Type a = expr(*e.args[0], ctx);
+  Type b = expr(*e.args[1], ctx);
+  if (a.is_error() || b.is_error()) return Type::error();
+  if (e.op == Op::And || e.op == Op::Or) {
+    for (int i = 0; i < 2; ++i) {
+      const Type& t = i == 0 ? a : b;
+      if (t.kind != Kind::Bool) {
+        sink_.error("E0201", e.args[static_cast<size_t>(i)]->span,
+                    fmt::format("`{}` needs a boolean on each side, found {}", op_text(e.op), t.describe()),
+                    "not true or false");
+        return Type::error();
+      }
+    }
+    return Type::boolean();
+  }
+  for (int i = 0; i < 2; ++i) {
+    const Type& t = i == 0 ? a : b;
+    if (!t.numeric()) {
+      sink_.error("E0201", e.args[static_cast<size_t>(i)]->span,
+                  fmt::format("`{}` needs numbers, found {}", op_text(e.op), t.describe()), "not a number");
+      return Type::error();
+    }
+  }
+  bool both_int = a.kind == Kind::Int && b.kind == Kind::Int;
+  switch (e.op) {
+    case Op::Add:
+    case Op::Sub:
+      if (!same_units(*e.args[0], *e.args[1], e.text_span, e.op == Op::Add ? "add" : "subtract"))
+        return Type::error();
+      if (both_int) return Type::integer();
+      return Type::number(is_zero(*e.args[0]) ? unit_of(b) : unit_of(a));
+    case Op::Mod:
+      if (!same_units(*e.args[0], *e.args[1], e.text_span, "take the remainder of")) return Type::error();
+      if (both_int) return Type::integer();
+      return Type::number(is_zero(*e.args[0]) ? unit_of(b) : unit_of(a));
+    case Op::Mul:
+      return both_int ? Type::integer() : Type::number(unit_of(a) * unit_of(b));
+    case Op::Div:
+      return Type::number(unit_of(a) / unit_of(b));
+    default:
+      return Type::error();
+  }
+}
+
+Type Checker::compare(Expr& e, ExprContext& ctx) {
+  // A bare enum value is resolved against the other side: `infill == path.kind` works too.
+  size_t first = is_bare_name(*e.args[0]) && !is_bare_name(*e.args[1]) ? 1 : 0;
+  Type t[2];
+  t[first] = expr(*e.args[first], ctx);
+  // `path.knd == infill`: the enum value cannot be judged once the field is unknown.
+  if (t[first].is_error() && is_bare_name(*e.args[1 - first])) return Type::error();
+  t[1 - first] = expr(*e.args[1 - first], ctx,
+                      t[first].kind == Kind::Enum ? t[first].enum_type : schema::EnumType::None);
+  if (t[0].is_error() || t[1].is_error()) return Type::error();
+  bool equality = e.op == Op::Eq || e.op == Op::Ne;
+  if (t[0].numeric() && t[1].numeric()) {
+    if (!same_units(*e.args[0], *e.args[1], e.text_span, "compare")) return Type::error();
+    return Type::boolean();
+  }
+  if (t[0].kind == Kind::Enum || t[1].kind == Kind::Enum) {
+    const Type& en = t[0].kind == Kind::Enum ? t[0] : t[1];
+    const Type& other = t[0].kind == Kind::Enum ? t[1] : t[0];
+    const auto& info = schema::enum_info(en.enum_type);
+    std::vector<std::string> values(info.values.begin(), info.values.end());
+    if (other != en) {
+      sink_
+          .error("E0204", e.text_span,
+                 fmt::format("cannot compare {} with {}", en.describe(), other.describe()),
+                 "different kinds of value")
+          .note(fmt::format("`{}` values are {}", info.name, quoted_list(values, 12)));
+      return Type::error();
+    }
+    if (!equality) {
+      sink_
+          .error("E0204", e.text_span, fmt::format("`{}` values have no order", info.name),
+                 fmt::format("`{}` cannot compare them", op_text(e.op)))
+          .help("compare with `==`, `!=` or `in (a, b)`");
+      return Type::error();
+    }
+    return Type::boolean();
+  }
+  if (t[0].kind == Kind::Bool && t[1].kind == Kind::Bool && equality) return Type::boolean();
+  sink_.error("E0201", e.text_span,
+              fmt::format("cannot compare {} with {}", t[0].describe(), t[1].describe()),
+              "different kinds of value");
+  return Type::error();
+}
+
+Type Checker::in_range(Expr& e, ExprContext& ctx) {
+  Type x = expr(*e.args[0], ctx);
+  Type lo = expr(*e.args[1], ctx);
+  Type hi = expr(*e.args[2], ctx);
+  if (x.is_error() || lo.is_error() || hi.is_error()) return Type::error();
+  for (size_t i = 0; i < 3; ++i) {
+    if (!e.args[i]->type.numeric()) {
+      sink_
+          .error("E0201", e.args[i]->span,
+                 fmt::format("`in LO..HI` needs numbers, found {}", e.args[i]->type.describe()),
+                 "not a number")
+          .help("for enum values, list them: `path.kind in (infill, bridge)`");
+      return Type::error();
+    }
+  }
+  if (!same_units(*e.args[0], *e.args[1], e.text_span, "compare") ||
+      !same_units(*e.args[0], *e.args[2], e.text_span, "compare"))
+    return Type::error();
+  return Type::boolean();
+}
+
+Type Checker::in_set(Expr& e, ExprContext& ctx) {
+  Type x = expr(*e.args[0], ctx);
+  bool ok = !x.is_error();
+  auto hint = x.kind == Kind::Enum ? x.enum_type : schema::EnumType::None;
+  for (size_t i = 1; i < e.args.size(); ++i) {
+    Type t = expr(*e.args[i], ctx, hint);
+    if (!ok || t.is_error()) {
+      ok = false;
+      continue;
+    }
+    bool same = (x.numeric() && t.numeric()) || x == t;
+    if (!same) {
+      sink_.error("E0204", e.args[i]->span,
+                  fmt::format("cannot compare {} with {}", x.describe(), t.describe()),
+                  "not the same kind of value as the left side");
+      ok = false;
+    } else if (x.numeric() && !same_units(*e.args[0], *e.args[i], e.text_span, "compare")) {
+      ok = false;
+    }
+  }
+  return ok ? Type::boolean() : Type::error();
+}
+
+Type Checker::if_expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
+  Type c = expr(*e.args[0], ctx);
+  Type a = expr(*e.args[1], ctx, hint);
+  Type b = expr(*e.args[2], ctx, a.kind == Kind::Enum ? a.enum_type : hint);
+  if (c.is_error() || a.is_error() || b.is_error()) return Type::error();
+  if (c.kind != Kind::Bool) {
+    sink_.error("E0201", e.args[0]->span,
+                fmt::format("the condition of `if` must be true or false, found {}", c.describe()),
+                "not true or false");
+    return Type::error();
+  }
+  if (a.numeric() && b.numeric()) {
+    if (!same_units(*e.args[1], *e.args[2], e.args[2]->span, "choose between")) return Type::error();
+    if (a.kind == Kind::Int && b.kind == Kind::Int) return Type::integer();
+    return Type::number(is_zero(*e.args[1]) ? unit_of(b) : unit_of(a));
+  }
+  if (a == b) return a;
+  sink_.error("E0201", e.args[2]->span,
+              fmt::format("the two branches of `if` differ: {} and {}", a.describe(), b.describe()),
+              "this branch differs from the `then` branch");
+  return Type::error();
+}
+
+// Folds constants, reporting operations that have no value (E0210).
+void Checker::fold(Expr& e) {
+  auto c = [&](size_t i) { return e.args[i]->constant; };
+  auto all = [&] {
+    for (const auto& a : e.args)
+      if (!a->constant) return false;
+    return true;
+  };
+  std::optional<double> v;
+  switch (e.kind) {
+    case ExprKind::Number:
+      v = e.number;
+      break;
+    case ExprKind::Bool:
+      v = e.boolean ? 1 : 0;
+      break;
+    case ExprKind::Name:
+      if (e.ref == ast::RefKind::EnumValue) v = e.enum_value;
+      break;
+    case ExprKind::Unary:
+      if (c(0)) v = e.op == Op::Neg ? -*c(0) : (*c(0) == 0 ? 1 : 0);
+      break;
+    case ExprKind::Binary: {
+      if ((e.op == Op::Div || e.op == Op::Mod) && c(1) == 0.0) {
+        sink_.error("E0210", e.args[1]->span,
+                    e.op == Op::Div ? "division by zero" : "remainder of a division by zero", "this is zero");
+        e.type = Type::error();
+        return;
+      }
+      if (!all()) break;
+      double a = *c(0), b = *c(1);
+      switch (e.op) {
+        case Op::Add:
+          v = a + b;
+          break;
+        case Op::Sub:
+          v = a - b;
+          break;
+        case Op::Mul:
+          v = a * b;
+          break;
+        case Op::Div:
+        case Op::Mod:
+          if (b == 0) {
+            sink_.error("E0210", e.args[1]->span,
+                        e.op == Op::Div ? "division by zero" : "remainder of a division by zero",
+                        "this is zero");
+            e.type = Type::error();
+            return;
+          }
+          v = e.op == Op::Div ? a / b : a - b * std::floor(a / b);
+          break;
+        case Op::Eq:
+          v = a == b;
+          break;
+        case Op::Ne:
+          v = a != b;
+          break;
+        case Op::Lt:
+          v = a < b;
+          break;
+        case Op::Le:
+          v = a <= b;
+          break;
+        case Op::Gt:
+          v = a > b;
+          break;
+        case Op::Ge:
+          v = a >= b;
+          break;
+        case Op::And:
+          v = (a != 0 && b != 0);
+          break;
+        case Op::Or:
+          v = (a != 0 || b != 0);
+          break;
+        default:
+          break;
+      }
+      break;
+    }
+    case ExprKind::InRange:
+      if (all()) v = *c(0) >= *c(1) && *c(0) <= *c(2);
+      break;
+    case ExprKind::InSet:
+      if (all()) {
+        bool in = false;
+        for (size_t i = 1; i < e.args.size(); ++i) in = in || *c(i) == *c(0);
+        v = in;
+      }
+      break;
+    case ExprKind::If:
+      if (c(0)) v = *c(0) != 0 ? c(1) : c(2);
+      break;
+    case ExprKind::Call: {
+      if (!all()) break;
+      auto rad = [&](size_t i) {
+        return unit_of(e.args[i]->type).deg == 1 ? *c(i) * std::numbers::pi / 180 : *c(i);
+      };
+      switch (e.func) {
+        case ast::Func::Min:
+        case ast::Func::Max: {
+          double r = *c(0);
+          for (size_t i = 1; i < e.args.size(); ++i)
+            r = e.func == ast::Func::Min ? std::min(r, *c(i)) : std::max(r, *c(i));
+          v = r;
+          break;
+        }
+        case ast::Func::Clamp:
+          v = std::min(std::max(*c(0), *c(1)), *c(2));
+          break;
+        case ast::Func::Abs:
+          v = std::abs(*c(0));
+          break;
+        case ast::Func::Round:
+          v = std::round(*c(0));
+          break;
+        case ast::Func::Floor:
+          v = std::floor(*c(0));
+          break;
+        case ast::Func::Ceil:
+          v = std::ceil(*c(0));
+          break;
+        case ast::Func::Sqrt:
+          if (*c(0) < 0) {
+            sink_.error("E0210", e.args[0]->span, "square root of a negative number", "this is negative");
+            e.type = Type::error();
+            return;
+          }
+          v = std::sqrt(*c(0));
+          break;
+        case ast::Func::Sin:
+          v = std::sin(rad(0));
+          break;
+        case ast::Func::Cos:
+          v = std::cos(rad(0));
+          break;
+        case ast::Func::Tan:
+          v = std::tan(rad(0));
+          break;
+        case ast::Func::Atan2:
+          v = std::atan2(*c(0), *c(1)) * 180 / std::numbers::pi;
+          break;
+        case ast::Func::Lerp:
+          v = *c(0) + (*c(1) - *c(0)) * *c(2);
+          break;
+      }
+      break;
+    }
+    default:
+      break;
+  }
+  if (!v) return;
+  if (!std::isfinite(*v) || (e.type.kind == Kind::Int && std::abs(*v) > 9007199254740992.0)) {
+    sink_.error("E0210", e.span, "this value is out of range", "the result is too large");
+    e.type = Type::error();
+    return;
+  }
+  e.constant = v;
+}
+
+}  // namespace tranche::compiler

@@ -1,0 +1,618 @@
+// Rules, actions and statements: what may stand where, slots, locals, loops and templates.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "compiler/check.h"
+#include "compiler/checker.h"
+#include "compiler/names.h"
+
+namespace tranche::compiler {
+
+using ast::Expr;
+using ast::Kind;
+using ast::Stmt;
+using ast::StmtKind;
+using ast::Type;
+
+namespace {
+
+constexpr int64_t kMaxRangeSteps = 10000;
+constexpr double kMaxLoopSteps = 1e6;  // iterations of nested constant ranges, all together
+
+std::string_view stmt_word(StmtKind k) {
+  switch (k) {
+    case StmtKind::Assign:
+      return "an assignment";
+    case StmtKind::Hook:
+      return "`before`/`after`";
+    case StmtKind::Replace:
+      return "`replace`";
+    case StmtKind::Gcode:
+      return "`gcode`";
+    case StmtKind::Comment:
+      return "`comment`";
+    case StmtKind::Let:
+      return "`let`";
+    case StmtKind::If:
+      return "`if`";
+    case StmtKind::For:
+      return "`for`";
+    case StmtKind::Move:
+      return "`move`";
+    case StmtKind::Default:
+      return "`default`";
+    case StmtKind::Offset:
+      return "`offset`";
+    case StmtKind::Reverse:
+      return "`reverse`";
+  }
+  return "?";
+}
+
+std::optional<schema::Level> level_named(std::string_view n) {
+  static constexpr std::string_view names[] = {"print", "layer", "island", "cell", "path", "piece"};
+  for (size_t i = 0; i < std::size(names); ++i)
+    if (names[i] == n) return static_cast<schema::Level>(i);
+  return std::nullopt;
+}
+
+bool user_file(const ast::SourceMap& sources, const ast::Span& s) {
+  return s.file < sources.size() && sources.file(s.file).user;
+}
+
+}  // namespace
+
+bool check(ast::Program& program, diag::Sink& sink) {
+  Checker checker(program, sink);
+  return checker.run();
+}
+
+bool Checker::run() {
+  size_t errors_before = sink_.errors();
+  int index = 0;
+  for (ast::Rule* r : program_.cascade) {
+    r->index = index++;
+    r->slots.clear();
+    r->conjuncts.clear();
+    rule(*r);
+  }
+  dependencies();
+  program_.checked = sink_.errors() == errors_before;
+  return program_.checked;
+}
+
+void Checker::rule(ast::Rule& r) {
+  rule_ = &r;
+  rule_sets_.clear();
+  stage_reported_.clear();
+  for (const auto& a : r.actions)
+    if (a->kind == StmtKind::Assign)
+      if (auto p = schema::find_property(a->name)) rule_sets_.insert(*p);
+
+  if (r.filter) {
+    ExprContext ctx;
+    Type t = expr(*r.filter, ctx);
+    if (!t.is_error() && t.kind != Kind::Bool) {
+      auto& d = sink_.error("E0201", r.filter->span,
+                            fmt::format("a filter must be true or false, found {}", t.describe()),
+                            "not true or false");
+      if (t.numeric()) d.help(fmt::format("compare it: `{} == ...`", sources_.text(r.filter->span)));
+    }
+  }
+
+  std::map<uint32_t, const Stmt*> seen;
+  for (auto& a : r.actions) {
+    size_t slots_before = r.slots.size();
+    switch (a->kind) {
+      case StmtKind::Assign:
+        modifier(r, *a);
+        break;
+      case StmtKind::Hook:
+        hook(r, *a, false);
+        break;
+      case StmtKind::Replace:
+        hook(r, *a, true);
+        break;
+      default: {
+        auto& d = sink_.error("E0400", a->span,
+                              fmt::format("{} cannot stand directly in a rule", stmt_word(a->kind)),
+                              "not an action");
+        if (a->kind == StmtKind::If)
+          d.help("a rule's condition is its filter: `rule \"...\" when CONDITION { ... }`");
+        else
+          d.help("put it in an executor or a replacer: `before layer { ... }`, `replace path { ... }`");
+        d.note(
+            "a rule holds modifiers (`speed = 20 mm/s`), executors (`before path { ... }`) and replacers "
+            "(`replace path { ... }`)");
+      }
+    }
+    if (r.slots.size() == slots_before) continue;
+    const ast::Slot& slot = r.slots.back();
+    if (auto it = seen.find(slot.key()); it != seen.end()) {
+      if (user_file(sources_, a->span))
+        sink_
+            .warning("W208", a->span, fmt::format("{} is set twice in this rule", slot.describe()),
+                     "set again here")
+            .label(it->second->span, "first set here")
+            .note("the last one wins; the first has no effect");
+    } else {
+      seen[slot.key()] = a.get();
+    }
+  }
+
+  if (r.filter)
+    for (const auto& slot : r.slots) require(*r.filter, limit_for(slot, r), r);
+  conjuncts(r);
+  if (r.actions.empty() && !r.from_set && user_file(sources_, r.span))
+    sink_.warning("W214", r.span, "this rule has no actions", "does nothing")
+        .help("give it a modifier (`speed = 20 mm/s`), an executor or a replacer, or remove it");
+}
+
+void Checker::modifier(ast::Rule& r, Stmt& s) {
+  auto p = schema::find_property(s.name);
+  ExprContext ctx;
+  ctx.where = ExprContext::Where::Value;
+  if (!p) {
+    std::vector<std::string> names;
+    for (const auto& info : schema::properties()) names.emplace_back(info.name);
+    auto& d = r.from_set
+                  ? sink_.error("E0103", s.name_span, fmt::format("unknown property `{}` in `--set`", s.name),
+                                "not a property")
+                  : sink_.error("E0103", s.name_span, fmt::format("unknown property `{}`", s.name),
+                                "not a property");
+    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (level_named(s.name) || schema::find_field(s.name))
+      d.note("fields describe the print and cannot be set");
+    expr(*s.value, ctx);
+    return;
+  }
+  const auto& info = schema::property(*p);
+  s.prop = *p;
+  expr(*s.value, ctx, info.enum_type);
+  bool ok = assignable(*s.value, Type::of(info.type, info.unit, info.enum_type), s.name, s.name_span);
+  if (ok && r.from_set && s.value->constant &&
+      (*s.value->constant < info.min || *s.value->constant > info.max)) {
+    auto& d = sink_.error(
+        "E0500", s.value->span,
+        fmt::format("`--set {}` is outside the physical range of `{}`", sources_.text(r.span), s.name),
+        fmt::format("expected {} to {}", format_quantity(info.min, info.unit),
+                    format_quantity(info.max, info.unit)));
+    if (info.unit == schema::Unit::Ratio && *s.value->constant > 1 && *s.value->constant <= 100)
+      d.help(fmt::format("for a percentage, write `--set {}={}%`", s.name, sources_.text(s.value->span)));
+  }
+  ast::Slot slot;
+  slot.kind = ast::SlotKind::Property;
+  slot.prop = *p;
+  slot.stage = info.stage;
+  slot.action = &s;
+  r.slots.push_back(slot);
+  require(*s.value, limit_for(slot, r), r);
+}
+
+bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
+                         const ast::Span& target_span) {
+  const Type& got = value.type;
+  if (got.is_error()) return false;
+  auto fail = [&](const char* code, std::string message, std::string label) -> diag::Diagnostic& {
+    auto& d = sink_.error(code, value.span, std::move(message), std::move(label));
+    if (target_span.valid() && target_span.file == value.span.file) d.label(target_span, "set here");
+    return d;
+  };
+  switch (want.kind) {
+    case Kind::Number:
+    case Kind::Int: {
+      if (!got.numeric()) {
+        fail("E0202", fmt::format("`{}` needs {}, found {}", target, want.describe(), got.describe()),
+             "wrong kind of value");
+        return false;
+      }
+      ast::Unit gu = got.kind == Kind::Number ? got.unit : ast::Unit{};
+      bool zero = value.constant == 0.0;
+      if (gu != want.unit && !(gu.plain() && zero)) {
+        auto& d =
+            fail("E0202", fmt::format("`{}` needs {}, found {}", target, want.describe(), got.describe()),
+                 gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
+        if (gu.plain() && value.kind == ast::ExprKind::Number)
+          d.help(fmt::format("write `{} {}`", sources_.text(value.span), want.unit.name()));
+        else if (want.unit.plain())
+          d.note(fmt::format("`{}` is a plain number (a ratio: `1` or `100%` is the full amount)", target));
+        return false;
+      }
+      if (want.kind == Kind::Int && got.kind != Kind::Int) {
+        fail("E0203", fmt::format("`{}` needs an integer, found {}", target, got.describe()),
+             "not an integer")
+            .help("round it: `round(...)`, `floor(...)` or `ceil(...)`");
+        return false;
+      }
+      return true;
+    }
+    case Kind::Bool:
+      if (got.kind == Kind::Bool) return true;
+      fail("E0201", fmt::format("`{}` needs `true` or `false`, found {}", target, got.describe()),
+           "not true or false");
+      return false;
+    case Kind::Enum: {
+      if (got == want) return true;
+      const auto& info = schema::enum_info(want.enum_type);
+      std::vector<std::string> values(info.values.begin(), info.values.end());
+      fail("E0204", fmt::format("`{}` needs a `{}` value, found {}", target, info.name, got.describe()),
+           "wrong kind of value")
+          .note(fmt::format("`{}` values are {}", info.name, quoted_list(values, 12)));
+      return false;
+    }
+    case Kind::Error:
+      return false;
+  }
+  return false;
+}
+
+void Checker::hook(ast::Rule& r, Stmt& s, bool replace) {
+  auto level = level_named(s.name);
+  if (!level) {
+    std::vector<std::string> names = {"print", "layer", "island", "cell", "path"};
+    auto& d = sink_.error("E0101", s.name_span, fmt::format("unknown level `{}`", s.name), "not a level");
+    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    d.note(replace ? "`replace` takes `path` or `island`"
+                   : "hooks are on `print`, `layer`, `island`, `cell` or `path`");
+    return;
+  }
+  if (!replace && *level == schema::Level::Piece) {
+    sink_.error("E0406", s.name_span, "there is no hook on `piece`", "not a hook")
+        .help("loop over the pieces in a hook on the path: `before path { for pc in path.pieces { ... } }`");
+    return;
+  }
+  if (replace && *level != schema::Level::Path && *level != schema::Level::Island) {
+    sink_.error("E0406", s.name_span, fmt::format("`{}` cannot be replaced", s.name), "not replaceable")
+        .note("`replace` takes `path` or `island`");
+    return;
+  }
+  s.level = *level;
+  ast::Slot slot;
+  slot.kind = replace ? ast::SlotKind::Replace : ast::SlotKind::Hook;
+  slot.level = *level;
+  slot.when = s.when;
+  slot.append = s.append;
+  slot.stage = replace ? (*level == schema::Level::Island ? schema::Stage::Island : schema::Stage::Path)
+                       : schema::Stage::Cooling;
+  slot.action = &s;
+  r.slots.push_back(slot);
+  std::vector<Local> locals;
+  bool emitted = false;
+  s.frame_size = 0;
+  statements(s.body, s, locals, 0, 1, emitted);
+}
+
+void Checker::statements(std::vector<ast::StmtPtr>& body, Stmt& action, std::vector<Local>& locals,
+                         int nesting, double loop_steps, bool& emitted) {
+  size_t mark = locals.size();
+  for (auto& s : body) statement(*s, action, locals, nesting, loop_steps, emitted);
+  unused_locals(locals, mark);
+  locals.resize(mark);
+}
+
+void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int nesting, double loop_steps,
+                        bool& emitted) {
+  bool replace = action.kind == StmtKind::Replace;
+  ExprContext ctx;
+  ctx.where = ExprContext::Where::Body;
+  ctx.locals = &locals;
+  ast::Slot body_slot;
+  body_slot.kind = ast::SlotKind::Hook;
+  body_slot.level = action.level;
+  body_slot.when = action.when;
+  body_slot.action = &action;
+  Limit limit = limit_for(body_slot, *rule_);
+  if (replace) limit.what = fmt::format("`replace {}` runs once per {}", action.name, action.name);
+  const char* where = replace ? "replace" : action.when == ast::When::Before ? "before" : "after";
+  switch (s.kind) {
+    case StmtKind::Assign:
+      sink_
+          .error("E0400", s.span, "properties are set directly in a rule",
+                 fmt::format("not allowed inside `{}`", where))
+          .help("for a single move, write `move to (x, y) with speed = ...`");
+      expr(*s.value, ctx);
+      return;
+    case StmtKind::Hook:
+    case StmtKind::Replace:
+      sink_
+          .error("E0400", s.span, fmt::format("{} cannot be nested", stmt_word(s.kind)),
+                 fmt::format("inside `{} {}`", where, action.name))
+          .help("put it directly in a rule");
+      return;
+    case StmtKind::Gcode:
+    case StmtKind::Comment:
+      text(s.text, ctx);
+      for (const auto& p : s.text.parts)
+        if (p.expr) require(*p.expr, limit, *rule_);
+      emitted = true;
+      return;
+    case StmtKind::Let: {
+      Type t = expr(*s.value, ctx);
+      require(*s.value, limit, *rule_);
+      Local l;
+      l.name = s.name;
+      l.span = s.name_span;
+      l.type = t;
+      if (declare(locals, std::move(l), action)) s.local = locals.back().slot;
+      return;
+    }
+    case StmtKind::If: {
+      Type t = expr(*s.value, ctx);
+      require(*s.value, limit, *rule_);
+      if (!t.is_error() && t.kind != Kind::Bool) {
+        sink_.error("E0201", s.value->span,
+                    fmt::format("the condition of `if` must be true or false, found {}", t.describe()),
+                    "not true or false");
+      } else if (s.value->constant && user_file(sources_, s.span)) {
+        sink_
+            .warning("W203", s.value->span,
+                     fmt::format("this condition is always {}", *s.value->constant != 0 ? "true" : "false"),
+                     "a constant")
+            .help(*s.value->constant != 0 ? "remove the `if`" : "remove the `if` and its block");
+      }
+      bool a = emitted, b = emitted;
+      statements(s.body, action, locals, nesting + 1, loop_steps, a);
+      statements(s.else_body, action, locals, nesting + 1, loop_steps, b);
+      emitted = a || b;
+      return;
+    }
+    case StmtKind::For:
+      loop(s, action, locals, nesting, loop_steps, emitted);
+      return;
+    case StmtKind::Move:
+      move(s, ctx);
+      if (s.x) require(*s.x, limit, *rule_);
+      if (s.y) require(*s.y, limit, *rule_);
+      for (const auto& o : s.options) require(*o.value, limit, *rule_);
+      emitted = true;
+      return;
+    case StmtKind::Default:
+      if (!replace)
+        sink_
+            .error("E0401", s.span, "`default` is only allowed in a replacer",
+                   fmt::format("inside `{}`", where))
+            .help("`default` stands for the element's own G-code: use it in `replace path { ... }`");
+      emitted = true;
+      return;
+    case StmtKind::Offset:
+    case StmtKind::Reverse: {
+      const char* word = s.kind == StmtKind::Offset ? "offset" : "reverse";
+      if (!replace) {
+        sink_
+            .error("E0401", s.span, fmt::format("`{}` is only allowed in a replacer", word),
+                   fmt::format("inside `{}`", where))
+            .help(fmt::format("write it in `replace {} {{ ... }}`",
+                              s.kind == StmtKind::Offset ? "island" : "path"));
+      } else if (s.kind == StmtKind::Reverse && action.level != schema::Level::Path) {
+        sink_.error("E0402", s.span, "`reverse` only applies to paths", "inside `replace island`")
+            .help("reverse a path in `replace path { reverse; default }`");
+      } else if (nesting > 0) {
+        sink_
+            .error("E0404", s.span, fmt::format("`{}` must stand at the top of the replacer", word),
+                   "inside `if` or `for`")
+            .help(
+                "put the condition in the rule's filter: the element is altered once, before it is printed");
+      } else if (emitted) {
+        sink_
+            .error("E0403", s.span, fmt::format("`{}` must come before anything the replacer prints", word),
+                   "after G-code was emitted")
+            .help(fmt::format(
+                "move `{}` to the start of the block: the element is altered before any of it prints", word));
+      }
+      if (s.kind == StmtKind::Offset) {
+        expr(*s.value, ctx);
+        assignable(*s.value, Type::number(ast::Unit{1, 0, 0, 0}), "offset", {});
+        // The alteration happens when the element is decided, not when it is printed.
+        ast::Slot alter;
+        alter.kind = ast::SlotKind::Replace;
+        alter.level = action.level;
+        alter.action = &action;
+        Limit when = limit_for(alter, *rule_);
+        require(*s.value, when, *rule_);
+      }
+      return;
+    }
+  }
+}
+
+void Checker::loop(Stmt& s, Stmt& action, std::vector<Local>& locals, int nesting, double loop_steps,
+                   bool& emitted) {
+  ExprContext ctx;
+  ctx.where = ExprContext::Where::Body;
+  ctx.locals = &locals;
+  Local var;
+  var.name = s.name;
+  var.span = s.name_span;
+  var.loop = true;
+  double steps = 1;
+  if (s.value2) {
+    Type lo = expr(*s.value, ctx);
+    Type hi = expr(*s.value2, ctx);
+    s.loop = ast::LoopKind::Range;
+    var.type = Type::integer();
+    var.element = ast::Element::Int;
+    bool ok = !lo.is_error() && !hi.is_error();
+    for (const Expr* bound : {s.value.get(), s.value2.get()}) {
+      if (ok && (bound->type.kind != Kind::Int || !bound->constant)) {
+        sink_
+            .error("E0405", bound->span, "the bounds of a `for` range must be integers known before slicing",
+                   bound->type.kind != Kind::Int ? "not an integer" : "not a constant")
+            .help(
+                "loops run a fixed number of times: `for i in 1..3 { ... }`; to loop over the print, use "
+                "`path.points`, `path.pieces` or `layer.islands`");
+        ok = false;
+      }
+    }
+    if (ok) {
+      s.range_lo = static_cast<int64_t>(*s.value->constant);
+      s.range_hi = static_cast<int64_t>(*s.value2->constant);
+      double n = static_cast<double>(s.range_hi) - static_cast<double>(s.range_lo) + 1;
+      ast::Span range = join(s.value->span, s.value2->span);
+      if (n > static_cast<double>(kMaxRangeSteps)) {
+        sink_.error("E0405", range,
+                    fmt::format("this range has {:.0f} steps; at most {} are allowed", n, kMaxRangeSteps),
+                    "too many steps");
+      } else if (n <= 0) {
+        if (user_file(sources_, range))
+          sink_
+              .warning("W211", range,
+                       fmt::format("the range `{}` is empty: the loop never runs", sources_.text(range)),
+                       "no steps")
+              .help("ranges count up and include both ends: `1..3` is 1, 2, 3");
+      } else if (loop_steps * n > kMaxLoopSteps) {
+        sink_.error("E0405", range,
+                    fmt::format("nested loops would run {:.0f} times; at most {:.0f} are allowed",
+                                loop_steps * n, kMaxLoopSteps),
+                    "the innermost range");
+      }
+      steps = std::max(n, 1.0);
+    }
+  } else {
+    Expr& c = *s.value;
+    std::string name = c.kind == ast::ExprKind::Member ? c.text + "." + c.member : std::string();
+    std::optional<schema::Level> needs;
+    if (name == "path.points") {
+      s.loop = ast::LoopKind::Points;
+      var.element = ast::Element::Point;
+      needs = schema::Level::Path;
+    } else if (name == "path.pieces") {
+      s.loop = ast::LoopKind::Pieces;
+      var.element = ast::Element::Piece;
+      needs = schema::Level::Path;
+    } else if (name == "layer.islands") {
+      s.loop = ast::LoopKind::Islands;
+      var.element = ast::Element::Island;
+      needs = schema::Level::Layer;
+    } else {
+      sink_
+          .error("E0405", c.span, fmt::format("cannot loop over `{}`", sources_.text(c.span)),
+                 "not a collection")
+          .note("`for` loops over `path.points`, `path.pieces`, `layer.islands` or a constant range `A..B`");
+      var.type = Type::error();
+      var.used = true;  // one error is enough
+    }
+    if (needs && action.level < *needs) {
+      sink_
+          .error("E0304", c.span,
+                 fmt::format("`{}` cannot be read in `{} {}`", name,
+                             action.kind == StmtKind::Replace ? "replace" : "before", action.name),
+                 fmt::format("needs a hook on `{}` or deeper", schema::level_name(*needs)))
+          .help(fmt::format("loop in a hook on the {}: `before {} {{ for ... }}`", schema::level_name(*needs),
+                            schema::level_name(*needs)));
+    }
+    c.type = Type::error();  // a collection, not a value; `loop` says which
+  }
+  size_t mark = locals.size();
+  if (declare(locals, std::move(var), action)) s.local = locals.back().slot;
+  statements(s.body, action, locals, nesting + 1, loop_steps * steps, emitted);
+  unused_locals(locals, mark);
+  locals.resize(mark);
+}
+
+void Checker::move(Stmt& s, ExprContext& ctx) {
+  for (Expr* coord : {s.x.get(), s.y.get()}) {
+    expr(*coord, ctx);
+    assignable(*coord, Type::number(ast::Unit{1, 0, 0, 0}), "move to", {});
+  }
+  std::set<std::string> given;
+  for (auto& o : s.options) {
+    auto p = schema::find_property(o.name);
+    bool allowed =
+        p && (*p == schema::PropId::Speed || *p == schema::PropId::Flow || *p == schema::PropId::Width);
+    if (!allowed) {
+      auto& d = sink_.error("E0412", o.name_span, fmt::format("`move ... with` cannot set `{}`", o.name),
+                            "not a move setting");
+      if (auto best = suggest(o.name, {"speed", "flow", "width"}))
+        d.help(fmt::format("did you mean `{}`?", *best));
+      d.note("a move takes `speed`, `flow` and `width`");
+      expr(*o.value, ctx);
+      continue;
+    }
+    if (!given.insert(o.name).second)
+      sink_.error("E0412", o.name_span, fmt::format("`{}` is given twice", o.name), "given again");
+    o.prop = *p;
+    const auto& info = schema::property(*p);
+    expr(*o.value, ctx);
+    assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span);
+  }
+}
+
+void Checker::text(ast::Template& t, ExprContext& ctx) {
+  for (auto& p : t.parts) {
+    if (!p.expr) continue;
+    Type type = expr(*p.expr, ctx);
+    if (type.is_error()) continue;
+    if (p.decimals >= 0 && !type.numeric())
+      sink_
+          .error("E0208", p.span,
+                 fmt::format("`:.{}` formats numbers, but this is {}", p.decimals, type.describe()),
+                 "not a number")
+          .help("remove the format: enum values print as their name, booleans as 1 or 0");
+  }
+}
+
+bool Checker::declare(std::vector<Local>& locals, Local local, Stmt& action) {
+  auto clash = [&](std::string why) {
+    sink_.error("E0108", local.span, fmt::format("`{}` {}", local.name, why), "choose another name");
+  };
+  for (const auto& l : locals) {
+    if (l.name == local.name) {
+      sink_
+          .error("E0108", local.span, fmt::format("`{}` is already defined", local.name),
+                 "defined again here")
+          .label(l.span, "first defined here")
+          .help("choose another name");
+      return false;
+    }
+  }
+  if (schema::find_property(local.name)) {
+    clash("is a property");
+    return false;
+  }
+  if (level_named(local.name) || local.name == "below" || local.name == "above" || local.name == "layers") {
+    clash("names a level");
+    return false;
+  }
+  for (const auto& e : schema::enums()) {
+    if (e.id != schema::EnumType::None && schema::find_enum_value(e.id, local.name)) {
+      clash(fmt::format("is a `{}` value", e.name));
+      return false;
+    }
+  }
+  local.slot = action.frame_size++;
+  locals.push_back(std::move(local));
+  return true;
+}
+
+void Checker::unused_locals(std::vector<Local>& locals, size_t from) {
+  for (size_t i = from; i < locals.size(); ++i) {
+    const Local& l = locals[i];
+    if (l.used || l.name.starts_with('_') || !user_file(sources_, l.span)) continue;
+    if (l.loop)
+      sink_.warning("W210", l.span, fmt::format("loop variable `{}` is never used", l.name), "unused")
+          .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"));
+    else
+      sink_.warning("W200", l.span, fmt::format("`let {}` is never used", l.name), "unused")
+          .help("remove it, or start its name with `_`");
+  }
+}
+
+void Checker::conjuncts(ast::Rule& r) {
+  if (!r.filter) return;
+  std::vector<const Expr*> stack{r.filter.get()};
+  std::vector<const Expr*> leaves;
+  while (!stack.empty()) {
+    const Expr* e = stack.back();
+    stack.pop_back();
+    if (e->kind == ast::ExprKind::Binary && e->op == ast::Op::And) {
+      stack.push_back(e->args[1].get());
+      stack.push_back(e->args[0].get());
+    } else {
+      leaves.push_back(e);
+    }
+  }
+  for (const Expr* e : leaves) r.conjuncts.push_back(ast::Conjunct{e, e->stage, e->level});
+}
+
+}  // namespace tranche::compiler

@@ -1,0 +1,120 @@
+// Internal to compiler/: the checker's state while it walks a program. check_expr.cpp types
+// expressions, check_names.cpp resolves references, check_rules.cpp handles rules and
+// statements, stages.cpp decides what each slot may read.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "compiler/ast/ast.h"
+#include "compiler/ast/diagnostic.h"
+
+namespace tranche::compiler {
+
+// A `let` or a loop variable.
+struct Local {
+  std::string name;
+  ast::Span span;
+  ast::Type type;  // Int for range loops; Error for collection elements (they have fields)
+  ast::Element element = ast::Element::None;
+  int slot = -1;
+  bool used = false;
+  bool loop = false;
+};
+
+// Where the expression being checked sits.
+struct ExprContext {
+  enum class Where { Filter, Value, Body } where = Where::Filter;
+  std::vector<Local>* locals = nullptr;  // in hook and replace bodies
+};
+
+// What a slot may read: fields known by `stage` (modifiers, replacement filters) and/or of
+// levels up to `level` (hooks, replacement bodies).
+struct Limit {
+  std::optional<schema::Stage> stage;
+  std::optional<schema::Level> level;
+  std::string what;                    // "`fill_angle` is decided per island, before any path exists"
+  ast::Span site;                      // where the slot is written (a secondary label)
+  std::optional<schema::PropId> prop;  // modifiers: same-stage reads become dependencies
+};
+
+// A read of one property by the modifier of another at the same stage.
+struct Dependency {
+  schema::PropId from, to;
+  ast::Span at;
+  const ast::Rule* rule;
+};
+
+class Checker {
+ public:
+  Checker(ast::Program& program, diag::Sink& sink)
+      : program_(program), sources_(program.sources), sink_(sink) {}
+  bool run();
+
+  // Expressions (check_expr.cpp). `hint` names the enum expected, so that bare enum values
+  // resolve (`path.kind == infill`, `seam = rear`).
+  ast::Type expr(ast::Expr& e, ExprContext& ctx, schema::EnumType hint = schema::EnumType::None);
+  // The expression as a value for `want` (a property's type): reports mismatches (E0202/E0203).
+  bool assignable(ast::Expr& value, const ast::Type& want, std::string_view target,
+                  const ast::Span& target_span);
+
+ private:
+  friend class StageChecker;
+  // check_names.cpp
+  ast::Type name(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
+  ast::Type member(ast::Expr& e, ExprContext& ctx);
+  ast::Type layer_access(ast::Expr& e, ExprContext& ctx);
+  ast::Type other_layer_field(ast::Expr& e, const ast::Span& object_span);
+  ast::Type call(ast::Expr& e, ExprContext& ctx);
+  ast::Type property_ref(ast::Expr& e, schema::PropId id);
+  Local* find_local(ExprContext& ctx, std::string_view name);
+  // check_expr.cpp
+  ast::Type binary(ast::Expr& e, ExprContext& ctx);
+  ast::Type compare(ast::Expr& e, ExprContext& ctx);
+  ast::Type in_set(ast::Expr& e, ExprContext& ctx);
+  ast::Type in_range(ast::Expr& e, ExprContext& ctx);
+  ast::Type if_expr(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
+  ast::Type number(ast::Expr& e);
+  bool same_units(const ast::Expr& a, const ast::Expr& b, const ast::Span& op, std::string_view verb);
+  void fold(ast::Expr& e);
+
+  // check_rules.cpp
+  void rule(ast::Rule& r);
+  void modifier(ast::Rule& r, ast::Stmt& s);
+  void hook(ast::Rule& r, ast::Stmt& s, bool replace);
+  void statements(std::vector<ast::StmtPtr>& body, ast::Stmt& action, std::vector<Local>& locals,
+                  int loop_depth, double loop_steps, bool& emitted);
+  void statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
+                 double loop_steps, bool& emitted);
+  void loop(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth, double loop_steps,
+            bool& emitted);
+  void move(ast::Stmt& s, ExprContext& ctx);
+  void text(ast::Template& t, ExprContext& ctx);
+  bool declare(std::vector<Local>& locals, Local local, ast::Stmt& action);
+  void unused_locals(std::vector<Local>& locals, size_t from);
+  void conjuncts(ast::Rule& r);
+
+  // stages.cpp
+  void require(const ast::Expr& e, const Limit& limit, const ast::Rule& r);
+  void dependencies();
+  Limit limit_for(const ast::Slot& slot, const ast::Rule& r) const;
+
+  ast::Program& program_;
+  const ast::SourceMap& sources_;
+  diag::Sink& sink_;
+  ast::Rule* rule_ = nullptr;           // the rule being checked
+  std::set<schema::PropId> rule_sets_;  // properties the current rule sets
+  std::set<uint32_t> stage_reported_;   // offsets of reads already reported in this rule
+  std::vector<Dependency> deps_;
+};
+
+// Human descriptions of stages, used in E03xx messages.
+std::string decided_at(schema::Stage s);  // "decided per island, before any path exists"
+std::string known_at(schema::Stage s);    // "known when a path is planned"
+// A property value as written in rules: "0.1 mm/s", "100%" for ratios, "2" for plain numbers.
+std::string format_quantity(double value, schema::Unit unit);
+
+}  // namespace tranche::compiler

@@ -1,0 +1,62 @@
+// The front end as a whole: read `.rules` files, expand `use`, add `--set` overrides, check,
+// lint. `rulec check` and `tranche slice --rules` call compile(); tests and the fuzzer call the
+// pieces with in-memory sources.
+//
+// `use "NAME"`: NAME starting with `./` or `../` is relative to the using file; an absolute path
+// is taken as is; anything else is looked up in the stdlib directory, which is the first
+// existing one of: FrontendOptions::stdlib_dir (`--stdlib`), $TRANCHE_STDLIB, the checkout's
+// stdlib/ (compiled in), <directory of the executable>/../share/tranche/stdlib. `.rules` is
+// added when NAME has no extension. Each file is read once, at its first `use`; a cycle is an
+// error naming the chain.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "compiler/ast/ast.h"
+#include "compiler/ast/diagnostic.h"
+#include "grammar/parse.h"
+
+namespace tranche::compiler {
+
+struct FrontendOptions {
+  std::string stdlib_dir;  // `--stdlib`; empty: the other places, in order
+  std::string exe_path;    // argv[0], for <exe dir>/../share/tranche/stdlib
+  grammar::ParseOptions parse;
+  bool lints = true;
+  // Reads a file's bytes; nothing if it is missing or not a regular file. Tests and the fuzzer
+  // replace it; the default reads from disk, refusing files over kMaxFileBytes.
+  std::function<std::optional<std::string>(const std::filesystem::path&)> read_file;
+};
+
+inline constexpr size_t kMaxFileBytes = 16u << 20;
+
+// The candidate stdlib directories, in order of preference, and the one in use (empty if none exists).
+std::vector<std::filesystem::path> stdlib_candidates(const FrontendOptions& options);
+std::filesystem::path stdlib_dir(const FrontendOptions& options);
+
+// Reads and parses `path` (a user file) and every file it uses, appending their rules to
+// program.cascade in order. Returns false if it reported an error.
+bool load_file(ast::Program& program, const std::string& path, const FrontendOptions& options,
+               diag::Sink& sink);
+// Same for a user file already in memory (`path` is used in messages and to resolve `./` uses).
+bool load_source(ast::Program& program, const std::string& path, std::string text,
+                 const FrontendOptions& options, diag::Sink& sink);
+
+// `--set key=value`: appends the implicit last rule `rule "--set key" { key = value }`. A plain
+// number takes the property's unit (`--set speed=40` is 40 mm/s). Diagnostics name `--set`.
+// The rule is checked by check(), which reports a value outside the property's physical range
+// as an error (E0500) rather than a warning. Returns false if it reported an error.
+bool add_set(ast::Program& program, std::string_view key, std::string_view value, diag::Sink& sink);
+
+// Everything `rulec check` does: load each file, add the `--set`s, check, lint.
+ast::Program compile(const std::vector<std::string>& paths,
+                     const std::vector<std::pair<std::string, std::string>>& sets,
+                     const FrontendOptions& options, diag::Sink& sink);
+
+}  // namespace tranche::compiler

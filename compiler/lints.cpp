@@ -1,0 +1,251 @@
+// Lints (W2xx) on a checked program. Each is reported only for rules in user files, and only
+// when proven: a filter the prover cannot bound is never reported.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "compiler/check.h"
+#include "compiler/checker.h"
+#include "compiler/prover.h"
+
+namespace tranche::compiler {
+
+using ast::Expr;
+using ast::ExprKind;
+using ast::Rule;
+
+namespace {
+
+bool user_rule(const ast::SourceMap& sources, const Rule& r) {
+  return !r.from_set && r.span.file < sources.size() && sources.file(r.span.file).user;
+}
+
+template <class Fn>
+void walk(const Expr& e, const Fn& fn) {
+  fn(e);
+  for (const auto& a : e.args) walk(*a, fn);
+}
+
+template <class Fn>
+void walk_stmts(const std::vector<ast::StmtPtr>& body, const Fn& fn) {
+  for (const auto& s : body) {
+    for (const Expr* e : {s->value.get(), s->value2.get(), s->x.get(), s->y.get()})
+      if (e) walk(*e, fn);
+    for (const auto& o : s->options) walk(*o.value, fn);
+    for (const auto& p : s->text.parts)
+      if (p.expr) walk(*p.expr, fn);
+    walk_stmts(s->body, fn);
+    walk_stmts(s->else_body, fn);
+  }
+}
+
+// W205: `==` on a measured length, area, time... is true only by luck.
+void float_equality(const ast::SourceMap& sources, const Rule& r, diag::Sink& sink) {
+  auto check = [&](const Expr& e) {
+    bool eq = e.kind == ExprKind::Binary && (e.op == ast::Op::Eq || e.op == ast::Op::Ne);
+    if (!eq && e.kind != ExprKind::InSet) return;
+    for (const auto& side : e.args) {
+      const Expr& f = *side;
+      bool measured = (f.ref == ast::RefKind::Field || f.ref == ast::RefKind::OtherLayer ||
+                       (f.ref == ast::RefKind::ElementField && f.element != ast::Element::Point)) &&
+                      f.type.kind == ast::Kind::Number;
+      bool point = f.ref == ast::RefKind::ElementField && f.element == ast::Element::Point &&
+                   f.point_field != ast::PointField::Index;
+      if (!measured && !point) continue;
+      std::string name(sources.text(f.span));
+      auto& d = sink.warning("W205", e.span,
+                             fmt::format("comparing `{}` with `{}` is fragile", name,
+                                         eq && e.op == ast::Op::Ne ? "!="
+                                         : eq                      ? "=="
+                                                                   : "in (...)"),
+                             "exact equality of a measured value");
+      d.note(
+          fmt::format("`{}` comes from geometry and floating-point arithmetic: 0.2 may be 0.19999999", name));
+      const Expr& other = side.get() == e.args[0].get() && e.args.size() > 1 ? *e.args[1] : *e.args[0];
+      if (eq && other.constant && f.type.unit == ast::Unit{1, 0, 0, 0}) {
+        double c = *other.constant;
+        d.help(fmt::format("compare with a range: `{} in {:g} mm..{:g} mm`", name, c - 0.01, c + 0.01));
+      } else {
+        d.help(fmt::format("compare with a range: `{} in LOW..HIGH`", name));
+      }
+      return;
+    }
+  };
+  if (r.filter) walk(*r.filter, check);
+  walk_stmts(r.actions, check);
+}
+
+// The constant values an expression can take: itself, or both branches of an `if`.
+void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
+  if (e.kind == ExprKind::If && !e.args[0]->constant) {
+    constant_leaves(*e.args[1], out);
+    constant_leaves(*e.args[2], out);
+  } else if (e.constant) {
+    out.push_back(&e);
+  }
+}
+
+// W206: a constant outside the property's physical range.
+void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
+  const auto& p = schema::property(prop);
+  if (p.type != schema::Type::Number && p.type != schema::Type::Int) return;
+  std::vector<const Expr*> leaves;
+  constant_leaves(value, leaves);
+  for (const Expr* e : leaves) {
+    double v = *e->constant;
+    if (v >= p.min && v <= p.max) continue;
+    auto& d = sink.warning(
+        "W206", e->span,
+        fmt::format("`{}` = {} is outside its physical range", p.name, format_quantity(v, p.unit)),
+        fmt::format("expected {} to {}", format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
+    if (p.unit == schema::Unit::Ratio && v > 1 && v <= 100 && e->kind == ExprKind::Number &&
+        e->unit_text.empty())
+      d.help(fmt::format("for a percentage, write `{:g}%`", v));
+  }
+}
+
+void ranges(const Rule& r, diag::Sink& sink) {
+  for (const auto& slot : r.slots)
+    if (slot.kind == ast::SlotKind::Property && slot.action && slot.action->value)
+      range(*slot.action->value, slot.prop, sink);
+  std::function<void(const std::vector<ast::StmtPtr>&)> moves = [&](const std::vector<ast::StmtPtr>& body) {
+    for (const auto& s : body) {
+      if (s->kind == ast::StmtKind::Move)
+        for (const auto& o : s->options)
+          if (o.value->type.kind != ast::Kind::Error) range(*o.value, o.prop, sink);
+      moves(s->body);
+      moves(s->else_body);
+    }
+  };
+  for (const auto& a : r.actions) moves(a->body);
+}
+
+// Does this later action take the slot whole, or does it read or add to what earlier rules gave?
+bool takes_slot(const ast::Slot& slot) {
+  if (slot.kind == ast::SlotKind::Hook && slot.append) return false;
+  if (slot.kind != ast::SlotKind::Property || !slot.action || !slot.action->value) return true;
+  bool inherits = false;
+  walk(*slot.action->value, [&](const Expr& e) { inherits = inherits || e.ref == ast::RefKind::Inherited; });
+  return !inherits;
+}
+
+struct RuleFacts {
+  std::optional<prover::Boxes> boxes;  // the filter as boxes; nothing = unknown
+};
+
+}  // namespace
+
+void lint(const ast::Program& program, diag::Sink& sink) {
+  const ast::SourceMap& sources = program.sources;
+  const auto& rules = program.cascade;
+  prover::Space space;
+  std::vector<RuleFacts> facts(rules.size());
+  for (size_t i = 0; i < rules.size(); ++i) {
+    const Rule& r = *rules[i];
+    if (!r.filter)
+      facts[i].boxes = prover::Boxes{prover::Box{}};
+    else if (!r.filter->type.is_error())
+      facts[i].boxes = prover::to_boxes(*r.filter, space, sources, r.index);
+  }
+
+  // Per-file duplicate rule names (W213).
+  std::map<std::pair<uint32_t, std::string>, const Rule*> names;
+  // Slots: for each slot key, the rules that set it, in cascade order.
+  std::map<uint32_t, std::vector<size_t>> by_slot;
+  for (size_t i = 0; i < rules.size(); ++i)
+    for (const auto& s : rules[i]->slots) by_slot[s.key()].push_back(i);
+
+  for (size_t i = 0; i < rules.size(); ++i) {
+    const Rule& r = *rules[i];
+    if (!user_rule(sources, r)) continue;
+    if (r.has_name) {
+      auto [it, fresh] = names.emplace(std::make_pair(r.span.file, r.name), &r);
+      if (!fresh)
+        sink.warning("W213", r.span, fmt::format("two rules are named \"{}\"", r.name),
+                     "second rule with this name")
+            .label(it->second->span, "first one")
+            .help("give each rule its own name: `rulec explain` and messages refer to rules by name");
+    }
+    float_equality(sources, r, sink);
+    ranges(r, sink);
+
+    if (r.filter && !r.filter->type.is_error()) {
+      if (r.filter->constant) {
+        bool always = *r.filter->constant != 0;
+        sink.warning("W203", r.filter->span,
+                     fmt::format("this filter is always {}", always ? "true" : "false"), "a constant")
+            .help(always ? "remove `when ...`: a rule without a filter always applies"
+                         : "remove the rule: it never applies");
+        continue;
+      }
+      if (facts[i].boxes && facts[i].boxes->empty()) {
+        sink.warning("W202", r.filter->span, "this filter can never be true", "no print element matches it")
+            .note("its conditions contradict each other, so the rule never applies");
+        continue;
+      }
+      auto negation = prover::to_boxes(*r.filter, space, sources, r.index, true);
+      if (negation && negation->empty()) {
+        auto& d = sink.warning("W204", r.filter->span, "this filter is always true", "matches every element");
+        d.help("remove `when ...` if that is intended; otherwise check the comparison");
+        for (const auto& s : r.slots) {
+          auto& list = by_slot[s.key()];
+          size_t shadowed = 0;
+          for (size_t j : list)
+            if (j < i) ++shadowed;
+          if (shadowed) {
+            d.note(fmt::format("it takes {} from every earlier rule that sets it", s.describe()));
+            break;
+          }
+        }
+      }
+    }
+
+    // W201: every slot taken by later rules wherever this rule matches.
+    if (r.slots.empty() || !facts[i].boxes || facts[i].boxes->empty()) continue;
+    std::vector<size_t> shadowers;
+    bool shadowed = true;
+    for (const auto& slot : r.slots) {
+      std::vector<const prover::Boxes*> cover;
+      std::vector<size_t> owners;
+      for (size_t j : by_slot[slot.key()]) {
+        if (j <= i || !facts[j].boxes || rules[j]->from_set) continue;
+        for (const auto& s : rules[j]->slots)
+          if (s.key() == slot.key() && takes_slot(s)) {
+            cover.push_back(&*facts[j].boxes);
+            owners.push_back(j);
+            break;
+          }
+      }
+      if (cover.empty()) {
+        shadowed = false;
+        break;
+      }
+      std::vector<size_t> used;
+      auto proof = prover::covered(*facts[i].boxes, cover, space, &used);
+      if (!proof || !*proof) {
+        shadowed = false;
+        break;
+      }
+      for (size_t u : used) shadowers.push_back(owners[u]);
+    }
+    if (!shadowed) continue;
+    std::sort(shadowers.begin(), shadowers.end());
+    shadowers.erase(std::unique(shadowers.begin(), shadowers.end()), shadowers.end());
+    std::string slots;
+    for (size_t k = 0; k < r.slots.size(); ++k) slots += (k ? ", " : "") + r.slots[k].describe();
+    auto& d = sink.warning("W201", r.span, fmt::format("rule {} never takes effect", r.display(sources)),
+                           "always overridden by later rules");
+    for (size_t k = 0; k < shadowers.size() && k < 4; ++k) {
+      const Rule& s = *rules[shadowers[k]];
+      d.label(s.span, fmt::format("{} overrides it", s.display(sources)));
+    }
+    if (shadowers.size() > 4) d.note(fmt::format("and {} more rules", shadowers.size() - 4));
+    d.note(fmt::format("wherever it matches, later rules also match and set {}: the last match wins", slots));
+    d.help("remove it, or move it after the rules that override it");
+  }
+}
+
+}  // namespace tranche::compiler

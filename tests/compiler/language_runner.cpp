@@ -1,0 +1,26 @@
+// Runs every tests/language/*.rules case against its inline `# expect` lines (expectations.h).
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "tests/compiler/expectations.h"
+#include "tests/support/fixtures.h"
+
+namespace fs = std::filesystem;
+
+TEST_CASE("language conformance: every tests/language case gives exactly the diagnostics it expects") {
+  fs::path dir = tranche::test::source_dir() / "tests" / "language";
+  std::vector<fs::path> cases;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().extension() == ".rules") cases.push_back(entry.path());
+  std::sort(cases.begin(), cases.end());
+  REQUIRE(cases.size() >= 80);
+  for (const auto& path : cases) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string problems = tranche::test::run_case(dir, path.filename().string(), text.str(), dir / "lib");
+    INFO(path.filename().string() << "\n" << problems);
+    CHECK(problems.empty());
+  }
+}
