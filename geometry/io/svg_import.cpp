@@ -291,7 +291,7 @@ Result<std::vector<svg::Subpath>> Reader::geometry(pugi::xml_node n, const std::
   if (name == "path") {
     pugi::xml_attribute d = n.attribute("d");
     size_t at = 0;
-    auto r = svg::parse_path_data(d.value(), tol, &at);
+    auto r = svg::parse_path_data(d.value(), tol, &at, kMaxPoints - std::min(points_, kMaxPoints));
     if (!r) {
       std::string_view v = d.value();
       size_t from = at > 12 ? at - 12 : 0;

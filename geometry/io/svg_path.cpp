@@ -105,6 +105,7 @@ class PathBuilder {
   explicit PathBuilder(double tolerance) : tol_(tolerance) {}
 
   Vec2 current() const { return cur_; }
+  size_t points() const { return done_ + sp_.points.size(); }
   void move_to(Vec2 p) {
     flush();
     sp_.points.push_back(p);
@@ -148,6 +149,7 @@ class PathBuilder {
     if (sp_.points.empty()) sp_.points.push_back(cur_);
   }
   void flush() {
+    done_ += sp_.points.size();
     if (!sp_.points.empty()) out_.push_back(std::move(sp_));
     sp_ = Subpath{};
   }
@@ -156,6 +158,7 @@ class PathBuilder {
   Vec2 cur_, start_;
   Subpath sp_;
   std::vector<Subpath> out_;
+  size_t done_ = 0;  // points in out_
 };
 
 int arg_count(char cmd) {
@@ -196,7 +199,8 @@ std::optional<double> scan_number(std::string_view s, size_t* pos) {
   return v;
 }
 
-Result<std::vector<Subpath>> parse_path_data(std::string_view d, double tolerance, size_t* error_offset) {
+Result<std::vector<Subpath>> parse_path_data(std::string_view d, double tolerance, size_t* error_offset,
+                                             size_t max_points) {
   Scanner sc(d);
   PathBuilder pb(tolerance > 0 ? tolerance : 1e-9);
   auto fail = [&](size_t at, std::string msg) -> Error {
@@ -307,6 +311,9 @@ Result<std::vector<Subpath>> parse_path_data(std::string_view d, double toleranc
         break;
     }
     prev = up;
+    if (pb.points() > max_points)
+      return fail(cmd_pos, "the path flattens to more than " + std::to_string(max_points) +
+                               " points: raise the curve tolerance (--svg-tolerance)");
     // A comma may separate repeated argument groups, but must be followed by more numbers.
     sc.skip_wsp();
     if (sc.peek() == ',') {

@@ -24,9 +24,10 @@ struct Subpath {
 // Parses path data (M L H V C S Q T A Z, absolute and relative, implicit repeats) and flattens
 // curves so that no point of a curve is farther than `tolerance` (user units, > 0) from its
 // polyline. On malformed data returns an error whose message says what was expected and sets
-// *error_offset to the index in `d` of the offending character.
+// *error_offset to the index in `d` of the offending character. More than `max_points` points
+// in all is an error too (a tiny tolerance on huge arcs would exhaust memory).
 Result<std::vector<Subpath>> parse_path_data(std::string_view d, double tolerance,
-                                             size_t* error_offset = nullptr);
+                                             size_t* error_offset = nullptr, size_t max_points = 20'000'000);
 
 // Parses a `points` attribute (polygon, polyline): pairs of numbers separated by commas and/or
 // whitespace. An odd count drops the last number and sets *odd (SVG renders up to the error).

@@ -220,6 +220,13 @@ TEST_CASE("path: malformed data reports what was expected and where") {
     CHECK(at == c.offset);
     CHECK(r.error().message.find(c.message) != std::string::npos);
   }
+  // A point budget stops runaway flattening (huge arcs at a tiny tolerance) at the command.
+  size_t at = 0;
+  auto big = geo::svg::parse_path_data("M0 0 L 1 1 A 1000 1000 0 1 0 2 0", 0.001, &at, 1000);
+  REQUIRE_FALSE(big.ok());
+  CHECK(at == 11);
+  CHECK(big.error().message.find("more than 1000 points") != std::string::npos);
+  CHECK(geo::svg::parse_path_data("M0 0 L 1 1 A 1000 1000 0 1 0 2 0", 0.001, &at, 100000).ok());
   CHECK(parse("").empty());
   CHECK(parse("   ").empty());
 }
