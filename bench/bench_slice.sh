@@ -31,7 +31,7 @@ names+=(torus)
 
 # Ours: best total of $runs runs (the machine is shared), with its per-stage row.
 echo "tranche (seconds; svg = --export-svg, json = --export-layers; maxrss = peak resident memory):"
-"$bench" run --header --name model "$tmp/${names[0]}.stl" 2>/dev/null | head -1
+"$bench" header
 declare -A ours
 for n in "${names[@]}"; do
   best=""

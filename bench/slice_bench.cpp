@@ -1,7 +1,8 @@
 // slice_bench: times the slicing stages on one model and prepares benchmark models.
-//   slice_bench run MODEL.stl [--svg OUT.svg] [--json OUT.json] [--name NAME] [--header]
+//   slice_bench run MODEL.stl [--svg OUT.svg] [--json OUT.json] [--name NAME]
 //       one table row: triangles, layers, seconds per stage (load, plan, slice, union, svg, json),
 //       total, and peak memory (getrusage maxrss)
+//   slice_bench header                         the table's header line
 //   slice_bench write-demo OUT.stl             the demo model (examples/models/demo.stl)
 //   slice_bench write-torus OUT.stl [M N]      a torus of 2 × M × N triangles (default 1280 × 320)
 //   slice_bench prepare-bunny IN.stl OUT.stl   metres, Y up → mm, Z up: ×1000, (x, y, z) → (x, −z, y)
@@ -54,9 +55,14 @@ int prepare_bunny(const std::string& in, const std::string& out) {
   return write(out, *mesh);
 }
 
+void header() {
+  fmt::print("{:<14} {:>9} {:>6} {:>6} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>6}\n", "model",
+             "triangles", "layers", "empty", "load s", "plan s", "slice s", "union s", "svg s", "json s",
+             "total s", "maxrss", "open");
+}
+
 int run(int argc, char** argv) {
   std::string model, svg, json, name;
-  bool header = false;
   for (int i = 2; i < argc; ++i) {
     std::string_view a = argv[i];
     if (a == "--svg" && i + 1 < argc)
@@ -65,8 +71,6 @@ int run(int argc, char** argv) {
       json = argv[++i];
     else if (a == "--name" && i + 1 < argc)
       name = argv[++i];
-    else if (a == "--header")
-      header = true;
     else
       model = argv[i];
   }
@@ -112,10 +116,6 @@ int run(int argc, char** argv) {
   for (const auto& l : *layers) empty += l.islands.empty();
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  if (header)
-    fmt::print("{:<14} {:>9} {:>6} {:>6} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>6}\n", "model",
-               "triangles", "layers", "empty", "load s", "plan s", "slice s", "union s", "svg s", "json s",
-               "total s", "maxrss", "open");
   fmt::print(
       "{:<14} {:>9} {:>6} {:>6} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6}MB "
       "{:>6}\n",
@@ -129,6 +129,7 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   const std::string_view cmd = argc > 1 ? argv[1] : "";
   if (cmd == "run") return run(argc, argv);
+  if (cmd == "header") return header(), 0;
   if (cmd == "write-demo" && argc == 3) return write(argv[2], demo_model());
   if (cmd == "write-torus" && (argc == 3 || argc == 5)) {
     int m = argc == 5 ? std::atoi(argv[3]) : 1280, n = argc == 5 ? std::atoi(argv[4]) : 320;
@@ -137,6 +138,6 @@ int main(int argc, char** argv) {
   }
   if (cmd == "prepare-bunny" && argc == 4) return prepare_bunny(argv[2], argv[3]);
   return fail(
-      "usage: slice_bench run MODEL.stl [--svg F] [--json F] [--name N] [--header] | write-demo OUT.stl | "
+      "usage: slice_bench run MODEL.stl [--svg F] [--json F] [--name N] | header | write-demo OUT.stl | "
       "write-torus OUT.stl [M N] | prepare-bunny IN.stl OUT.stl");
 }
