@@ -1,0 +1,40 @@
+// Monotone ("pseudo-convex") cells (seed section 4): an island is cut into cells that each fill
+// with one continuous zig-zag at the fill angle, cutting only where the boundary turns back
+// against the sweep. See docs/polygons.md for the method.
+#pragma once
+
+#include "geometry/core/layer.h"
+#include "runtime/base/report.h"
+#include "runtime/base/result.h"
+
+namespace tranche::geo {
+
+struct DecomposeStats {
+  int sweep_cells = 0;  // cells made by the sweep, before merging
+  int cells = 0;        // after merging neighbours whose union is still monotone
+  int cuts = 0;         // artificial cuts left
+};
+
+// Cuts `shape` (outer CCW, holes CW, rings meeting only at shared vertices: what resolve.h makes)
+// into cells monotone for the fill angle `angle_deg` (degrees, counter-clockwise from +x). Each
+// cell: ring CCW, edges[i] the kind of ring[i] -> ring[i+1] (Real on the island's outline and
+// holes, Artificial on cuts), fill_angle_deg = angle_deg, solid = false. The cells tile the shape
+// exactly and use only its vertices. Errors: coordinates beyond ±2147 mm, inconsistent input.
+Result<std::vector<Cell>> decompose(const Polygon& shape, double angle_deg, DecomposeStats* stats = nullptr);
+
+// Cells of a region given as rings by the nonzero rule (e.g. an island's inset fill region, which
+// may pinch or split): its strict islands (resolve.h strict_islands), each decomposed for
+// angle_deg. Stats add up over the islands.
+Result<std::vector<Cell>> decompose_region(const Rings& region, double angle_deg,
+                                           DecomposeStats* stats = nullptr);
+
+// The default fill angle: 45° on even layers, 135° on odd ones (perpendicular layer to layer).
+double default_fill_angle(int layer_index);
+
+// Fills island.cells for `angle_deg` and records the angle in island.fill_angle_deg.
+Status decompose_island(Island& island, double angle_deg, DecomposeStats* stats = nullptr);
+
+// Decomposes every island of the layer at its fill_angle_deg, or the default when it is NaN.
+Status decompose_layer(Layer& layer, DecomposeStats* total = nullptr);
+
+}  // namespace tranche::geo

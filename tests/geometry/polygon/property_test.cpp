@@ -1,0 +1,203 @@
+// Randomised properties over thousands of generated polygons (fixed seeds): whatever the input,
+// resolution gives valid strict islands covering the same area as a plain union, and every
+// decomposition tiles its island with monotone cells whose real edges are exactly the boundary.
+#include <doctest/doctest.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "geometry/polygon/corpus.h"
+#include "geometry/polygon/decompose.h"
+#include "geometry/polygon/resolve.h"
+#include "polygon_checks.h"
+
+using namespace tranche;
+using namespace tranche::geo;
+
+namespace {
+
+using Rng = std::mt19937_64;
+using test::i128;
+
+double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+int pick(Rng& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+
+// A star-shaped outline with star-shaped holes cut out (by a Clipper difference, so holes may
+// overlap each other and the outline).
+Rings stars_with_holes(Rng& rng, coord_t grid) {
+  const double r = uniform(rng, 5e6, 40e6);
+  Rings outer{test::star(rng, 0, 0, r * uniform(rng, 0.2, 0.9), r, pick(rng, 3, 40), grid)};
+  Rings holes;
+  for (int i = pick(rng, 0, 8); i > 0; --i) {
+    const double hr = r * uniform(rng, 0.05, 0.3);
+    const double a = uniform(rng, 0, 2 * M_PI), d = uniform(rng, 0, r * 0.7);
+    holes.push_back(test::star(rng, d * std::cos(a), d * std::sin(a), hr * uniform(rng, 0.3, 1), hr,
+                               pick(rng, 3, 16), grid));
+  }
+  ClipperLib::Clipper c;
+  c.AddPaths(outer, ClipperLib::ptSubject, true);
+  c.AddPaths(holes, ClipperLib::ptClip, true);
+  Rings out;
+  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+// Axis-aligned rectangles on a coarse grid: pinch points, collinear runs, shared edges.
+Rings rectangles(Rng& rng) {
+  const coord_t g = 1000000;
+  Rings out;
+  for (int i = pick(rng, 1, 12); i > 0; --i) {
+    const coord_t x = pick(rng, 0, 10) * g, y = pick(rng, 0, 10) * g;
+    out.push_back(test::rect(x, y, x + pick(rng, 1, 5) * g, y + pick(rng, 1, 5) * g));
+  }
+  return out;
+}
+
+// Regular polygons ("circles") of random size, some reversed (holes where they lie inside others).
+Rings circles(Rng& rng, coord_t grid) {
+  Rings out;
+  for (int i = pick(rng, 1, 8); i > 0; --i) {
+    const double cx = uniform(rng, -20e6, 20e6), cy = uniform(rng, -20e6, 20e6), r = uniform(rng, 1e6, 15e6);
+    const int n = pick(rng, 3, 48);
+    const double phase = uniform(rng, 0, 1);
+    Ring ring;
+    for (int k = 0; k < n; ++k) {
+      const double t = 2 * M_PI * (k + phase) / n;
+      ring.emplace_back(std::llround((cx + r * std::cos(t)) / grid) * grid,
+                        std::llround((cy + r * std::sin(t)) / grid) * grid);
+    }
+    if (pick(rng, 0, 3) == 0) ring = test::reversed(ring);
+    out.push_back(ring);
+  }
+  return out;
+}
+
+// Random points: self-intersecting loops of every kind.
+Rings scribbles(Rng& rng, coord_t grid) {
+  Rings out;
+  for (int i = pick(rng, 1, 3); i > 0; --i) {
+    Ring ring;
+    for (int k = pick(rng, 3, 12); k > 0; --k) {
+      ring.emplace_back(pick(rng, -10, 10) * grid, pick(rng, -10, 10) * grid);
+    }
+    out.push_back(ring);
+  }
+  return out;
+}
+
+double random_angle(Rng& rng) {
+  switch (pick(rng, 0, 3)) {
+    case 0:
+      return 45.0 * pick(rng, 0, 7);  // exactly parallel to many generated edges
+    case 1:
+      return pick(rng, 0, 179);
+    default:
+      return uniform(rng, -180, 360);
+  }
+}
+
+// Writes a failing case where it can be turned into a corpus entry.
+std::string dump(const Rings& loops, OverlapMode mode, double angle, const std::string& tag) {
+  PolygonCase c;
+  c.mode = mode;
+  c.angles = {angle};
+  c.loops = loops;
+  const auto path = std::filesystem::temp_directory_path() / fmt::format("tranche-polygon-{}.txt", tag);
+  std::ofstream(path) << format_polygon_case(c);
+  return path.string();
+}
+
+struct Totals {
+  int cases = 0, islands = 0, cells = 0, failures = 0;
+};
+
+void run_case(const Rings& loops, OverlapMode mode, Rng& rng, const std::string& tag, Totals& t) {
+  ++t.cases;
+  Report rep;
+  ResolveOptions o;
+  o.overlap = mode;
+  auto islands = resolve_islands(loops, o, rep);
+  if (!islands) {
+    FAIL_CHECK(fmt::format("{}: resolve failed: {} (case in {})", tag, islands.error().to_string(),
+                           dump(loops, mode, 0, tag)));
+    ++t.failures;
+    return;
+  }
+  for (const auto& is : *islands) {
+    const std::string p = test::island_problem(is);
+    if (!p.empty()) {
+      FAIL_CHECK(fmt::format("{}: bad island: {} (case in {})", tag, p, dump(loops, mode, 0, tag)));
+      ++t.failures;
+      return;
+    }
+  }
+  if (const std::string p = test::coverage_problem(loops, mode == OverlapMode::Boolean, *islands, rng, 64);
+      !p.empty()) {
+    FAIL_CHECK(fmt::format("{}: {} (case in {})", tag, p, dump(loops, mode, 0, tag)));
+    ++t.failures;
+    return;
+  }
+  for (const auto& is : *islands) {
+    ++t.islands;
+    for (int k = 0; k < 2; ++k) {
+      const double angle = random_angle(rng);
+      auto cells = decompose(is.shape, angle);
+      std::string p = cells ? test::cells_problem(is, *cells, angle, true, &rng) : cells.error().to_string();
+      if (!p.empty()) {
+        FAIL_CHECK(fmt::format("{}: decomposition at {}°: {} (case in {})", tag, angle, p,
+                               dump(loops, mode, angle, tag)));
+        ++t.failures;
+        return;
+      }
+      t.cells += static_cast<int>(cells->size());
+    }
+  }
+}
+
+// TRANCHE_PROPERTY_SCALE=N runs N times as many cases, with other seeds (for stress runs).
+int scale() {
+  const char* s = std::getenv("TRANCHE_PROPERTY_SCALE");
+  return s ? std::max(1, std::atoi(s)) : 1;
+}
+
+void run_family(const char* name, int count, uint64_t seed, const std::function<Rings(Rng&)>& make,
+                OverlapMode mode = OverlapMode::Additive) {
+  count *= scale();
+  Rng rng(seed * static_cast<uint64_t>(scale()));
+  Totals t;
+  for (int i = 0; i < count && t.failures < 3; ++i) {
+    run_case(make(rng), mode, rng, fmt::format("{}-{}", name, i), t);
+  }
+  MESSAGE(fmt::format("{}: {} cases, {} islands, {} cells", name, t.cases, t.islands, t.cells));
+  CHECK(t.failures == 0);
+  CHECK(t.islands > 0);
+}
+
+}  // namespace
+
+TEST_CASE("property: stars with holes, fine and coarse grids") {
+  run_family("stars", 600, 11, [](Rng& rng) { return stars_with_holes(rng, 1); });
+  run_family("stars-grid", 600, 12, [](Rng& rng) { return stars_with_holes(rng, 1000000); });
+}
+
+TEST_CASE("property: unions of rectangles") {
+  run_family("rects", 800, 21, rectangles);
+  run_family("rects-xor", 400, 22, rectangles, OverlapMode::Boolean);
+}
+
+TEST_CASE("property: unions of circles") {
+  run_family("circles", 500, 31, [](Rng& rng) { return circles(rng, 1); });
+  run_family("circles-grid", 300, 32, [](Rng& rng) { return circles(rng, 500000); });
+  run_family(
+      "circles-xor", 300, 33, [](Rng& rng) { return circles(rng, 1); }, OverlapMode::Boolean);
+}
+
+TEST_CASE("property: self-intersecting scribbles") {
+  run_family("scribbles", 600, 41, [](Rng& rng) { return scribbles(rng, 1000000); });
+  run_family(
+      "scribbles-xor", 600, 42, [](Rng& rng) { return scribbles(rng, 1000000); }, OverlapMode::Boolean);
+  run_family("scribbles-fine", 300, 43, [](Rng& rng) { return scribbles(rng, 1237); });
+}
