@@ -50,8 +50,8 @@ void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
   out.append(std::string_view(layer.islands.empty() ? "]}" : "\n]}"));
 }
 
-Status write_layers_json(const std::string& path, const std::vector<Layer>& layers,
-                         const std::string& source) {
+Status write_layers_json(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
+                         const std::function<void(size_t)>& progress) {
   auto file = OutputFile::open(path);
   if (!file) return file.error();
   fmt::memory_buffer head;
@@ -72,6 +72,7 @@ Status write_layers_json(const std::string& path, const std::vector<Layer>& laye
     });
     for (size_t i = 0; i < n; ++i)
       if (auto st = file->write({batch[i].data(), batch[i].size()}); !st) return st;
+    if (progress) progress(base + n);
   }
   if (auto st = file->write("]}\n"); !st) return st;
   return file->commit();

@@ -82,8 +82,8 @@ void append_layer(fmt::memory_buffer& out, const Layer& layer, size_t slot, cons
 
 }  // namespace
 
-Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers,
-                        const std::string& source) {
+Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
+                        const std::function<void(size_t)>& progress) {
   auto file = OutputFile::open(path);
   if (!file) return file.error();
   const Sheet s = layout(layers);
@@ -122,6 +122,7 @@ Status write_layers_svg(const std::string& path, const std::vector<Layer>& layer
     });
     for (size_t i = 0; i < n; ++i)
       if (auto st = file->write({batch[i].data(), batch[i].size()}); !st) return st;
+    if (progress) progress(base + n);
   }
   if (auto st = file->write("</svg>\n"); !st) return st;
   return file->commit();

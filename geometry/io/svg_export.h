@@ -5,6 +5,7 @@
 // layer on the sheet.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ inline constexpr int kLayersSvgVersion = 1;
 inline constexpr const char* kTrancheSvgNamespace = "urn:tranche:layers";
 
 // Writes `layers` (bottom to top) to `path` atomically. `source` names the model in the title.
-Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers, const std::string& source);
+// `progress`, when set, is called with the number of layers written so far.
+Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
+                        const std::function<void(size_t)>& progress = {});
 
 }  // namespace tranche::geo

@@ -112,8 +112,9 @@ Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report
 // The stages after slicing, shared by STL and SVG input.
 Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summary,
                             geo::FillAngleScript* script, const SliceOptions& options, Progress& progress) {
-  progress.start("union");
-  if (auto st = geo::make_islands(layers); !st) return st.error();
+  auto tick = [&](size_t done) { progress.update(done); };
+  progress.start("union", layers.size());
+  if (auto st = geo::make_islands(layers, tick); !st) return st.error();
   progress.finish();
 
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
@@ -124,14 +125,15 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
 
   summary.layers = static_cast<int>(layers.size());
   if (!options.export_svg.empty()) {
-    progress.start("svg");
-    if (auto st = geo::write_layers_svg(options.export_svg, layers, options.model); !st) return st.error();
+    progress.start("svg", layers.size());
+    if (auto st = geo::write_layers_svg(options.export_svg, layers, options.model, tick); !st)
+      return st.error();
     progress.finish();
     summary.written.push_back(options.export_svg);
   }
   if (!options.export_layers.empty()) {
-    progress.start("json");
-    if (auto st = geo::write_layers_json(options.export_layers, layers, options.model); !st)
+    progress.start("json", layers.size());
+    if (auto st = geo::write_layers_json(options.export_layers, layers, options.model, tick); !st)
       return st.error();
     progress.finish();
     summary.written.push_back(options.export_layers);

@@ -1,5 +1,6 @@
 #include "geometry/slice/simple_islands.h"
 
+#include <atomic>
 #include <exception>
 #include <optional>
 
@@ -36,11 +37,14 @@ Status make_islands(Layer& layer) {
   return ok_status();
 }
 
-Status make_islands(std::vector<Layer>& layers) {
+Status make_islands(std::vector<Layer>& layers, const std::function<void(size_t)>& progress) {
   std::vector<std::optional<Error>> errors(layers.size());
+  std::atomic<size_t> done{0};
   tbb::parallel_for(size_t{0}, layers.size(), [&](size_t i) {
     auto st = make_islands(layers[i]);
     if (!st) errors[i] = st.error();
+    const size_t n = ++done;
+    if (progress) progress(n);
   });
   for (auto& e : errors)
     if (e) return *e;

@@ -3,6 +3,7 @@
 // connected islands; kept in this one small file so it is easy to swap.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "geometry/core/layer.h"
@@ -19,6 +20,7 @@ Result<Polygons> union_nonzero(const Rings& loops);
 Status make_islands(Layer& layer);
 
 // The same for every layer, in parallel; the first error (by layer order) is returned.
-Status make_islands(std::vector<Layer>& layers);
+// `progress`, when set, is called from worker threads with the number of layers done so far.
+Status make_islands(std::vector<Layer>& layers, const std::function<void(size_t)>& progress = {});
 
 }  // namespace tranche::geo
