@@ -1,0 +1,79 @@
+#include <doctest/doctest.h>
+
+#include "geometry/mesh/primitives.h"
+#include "geometry/polygon/layers.h"
+#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/slicer.h"
+#include "polygon_checks.h"
+
+using namespace tranche;
+using namespace tranche::geo;
+
+namespace {
+
+std::vector<Layer> slice(const Mesh& mesh) {
+  Report rep;
+  auto layers = plan_layers(mesh.bbox().max.z, {});
+  REQUIRE(layers.ok());
+  auto st = slice_mesh(mesh, *layers, {}, rep);
+  REQUIRE(st.ok());
+  return std::move(*layers);
+}
+
+}  // namespace
+
+TEST_CASE("layers: two cubes touching along an edge slice into two islands per layer") {
+  // Cube A [0,10]^3 and cube B [10,20]x[10,20]x[0,10] share the vertical edge x = y = 10.
+  Mesh cubes = box({10, 10, 10});
+  append(cubes, box({10, 10, 10}, {10, 10, 0}));
+  std::vector<Layer> layers = slice(cubes);
+  REQUIRE(layers.size() > 10);
+  Report rep;
+  REQUIRE(resolve_layers(layers, {}, rep).ok());
+  for (const Layer& l : layers) {
+    CHECK(l.islands.size() == 2);
+    for (const auto& is : l.islands) CHECK(is.area_mm2 == doctest::Approx(100).epsilon(1e-6));
+  }
+  REQUIRE(decompose_layers(layers).ok());
+  for (const Layer& l : layers) {
+    for (const auto& is : l.islands) {
+      CHECK(is.fill_angle_deg == default_fill_angle(l.index));
+      CHECK(is.cells.size() == 1);
+    }
+  }
+}
+
+TEST_CASE("layers: a plate with holes, resolved and decomposed layer by layer") {
+  std::vector<Layer> layers = slice(plate_with_holes(60, 40, 3, 4, 3, 4, 32));
+  Report rep;
+  REQUIRE(resolve_layers(layers, {}, rep).ok());
+  CHECK(rep.empty());
+  DecomposeStats total;
+  REQUIRE(decompose_layers(layers, &total).ok());
+  for (const Layer& l : layers) {
+    REQUIRE(l.islands.size() == 1);
+    CHECK(l.islands[0].shape.holes.size() == 12);
+    CHECK(test::cells_problem(l.islands[0], l.islands[0].cells, l.islands[0].fill_angle_deg) == "");
+  }
+  CHECK(total.cells >= static_cast<int>(layers.size()) * 2);
+}
+
+TEST_CASE("layers: errors name the layer, warnings come in layer order") {
+  std::vector<Layer> layers(3);
+  for (int i = 0; i < 3; ++i) {
+    layers[i].index = i;
+    layers[i].loops = {test::mm_ring({{0, 0}, {20, 20}, {20, 0}, {0, 20}})};  // a figure 8
+  }
+  Report rep;
+  REQUIRE(resolve_layers(layers, {}, rep).ok());
+  const auto w = rep.warnings();
+  REQUIRE(w.size() == 3);
+  CHECK(w[0].where.rfind("layer 0 ", 0) == 0);
+  CHECK(w[2].where.rfind("layer 2 ", 0) == 0);
+  ResolveOptions strict;
+  strict.strict = true;
+  Report rep2;
+  auto st = resolve_layers(layers, strict, rep2);
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().where.rfind("layer 0 ", 0) == 0);
+}
