@@ -11,6 +11,7 @@
 
 #include "geometry/io/svg_source.h"
 #include "geometry/io/svg_stack.h"
+#include "geometry/polygon/resolve.h"
 
 namespace tranche::geo {
 
@@ -23,7 +24,7 @@ using svg::Vec2;
 constexpr int kMaxDepth = 256;              // nested groups and use references
 constexpr size_t kMaxElements = 1'000'000;  // elements rendered, counting each use expansion
 constexpr size_t kMaxPoints = 20'000'000;   // flattened points over the whole drawing
-constexpr double kMaxCoordMm = 10'000;      // 10 m: beyond, the units are surely wrong
+constexpr double kMaxCoordMm = 2'000;       // beyond, the units are surely wrong (polygon work stops at 2147)
 constexpr double kMaxSizeMm = 2'000;        // the largest bed the schema allows
 
 // Inherited presentation properties, as computed for one element.
@@ -67,6 +68,7 @@ class Reader {
   Result<std::vector<svg::Subpath>> geometry(pugi::xml_node n, const std::string& name, double tol);
   Result<Rings> place(pugi::xml_node n, const std::vector<svg::Subpath>& subpaths, const Affine& ctm);
   void warn_outside_layers(pugi::xml_node root, const svg::Stack& stack);
+  static Result<Polygons> strict(const Polygons& resolved);
   Error error_at(pugi::xml_node n, std::string msg) const { return Error{src_.at(n), std::move(msg)}; }
   void warn(pugi::xml_node n, const char* code, std::string msg) {
     report_.warn(code, src_.at(n), std::move(msg));
@@ -373,7 +375,7 @@ Result<Rings> Reader::place(pugi::xml_node n, const std::vector<svg::Subpath>& s
                                (std::isfinite(q.x) && std::isfinite(q.y)
                                     ? "at (" + std::to_string(q.x) + ", " + std::to_string(q.y) + ") mm"
                                     : std::string("at infinity")) +
-                               ", more than 10 m from the page origin: check the units and transforms");
+                               ", more than 2 m from the page origin: check the units and transforms");
       Point pt = to_point(q.x, q.y);
       if (r.empty() || r.back() != pt) r.push_back(pt);
     }
@@ -414,6 +416,17 @@ Status Reader::shape(pugi::xml_node n, const std::string& name, const Affine& ct
   s.where = src_.at(n);
   out.push_back(std::move(s));
   return ok_status();
+}
+
+// Material split into strictly connected islands by the polygon stage (regions touching at a
+// point become separate polygons).
+Result<Polygons> Reader::strict(const Polygons& resolved) {
+  auto islands = strict_islands(to_rings(resolved), OverlapMode::Additive);
+  if (!islands) return islands.error();
+  Polygons out;
+  out.reserve(islands->size());
+  for (Island& i : *islands) out.push_back(std::move(i.shape));
+  return out;
 }
 
 void Reader::warn_outside_layers(pugi::xml_node root, const svg::Stack& stack) {
@@ -516,6 +529,11 @@ Result<SvgModel> Reader::read(const pugi::xml_document& doc) {
         for (auto& hole : p.holes)
           for (auto& pt : hole) pt.Y -= box.min_y;
       }
+  }
+  for (size_t i = 0; i < model.layers.size(); ++i) {
+    auto polys = strict(model.layers[i].polygons);
+    if (!polys) return Error{stack_ ? src_.at(stack->layers[i].node) : src_.name(), polys.error().message};
+    model.layers[i].polygons = std::move(*polys);
   }
   return model;
 }

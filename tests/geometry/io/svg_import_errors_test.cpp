@@ -51,10 +51,12 @@ TEST_CASE("errors: units and sizes") {
   CHECK_ERROR(std::string(kHead) + "\n" + R"(<rect width="3km" height="1"/></svg>)", "test.svg:2:14",
               "unknown unit 'km'");
   // A drawing larger than any bed, or far from the page: the units are probably wrong.
-  CHECK_ERROR(std::string(kHead) + R"(<rect width="5000" height="10"/></svg>)", "test.svg",
-              "larger than 2000 mm");
+  CHECK_ERROR(std::string(kHead) + R"(<rect x="-1500" width="3000" height="10"/></svg>)", "test.svg",
+              "the drawing is 3000 x 10 mm, larger than 2000 mm");
+  CHECK_ERROR(std::string(kHead) + R"(<rect width="5000" height="10"/></svg>)", "test.svg:1:92",
+              "more than 2 m from the page origin");
   CHECK_ERROR(std::string(kHead) + "\n" + R"(<rect x="1e7" width="1" height="1"/></svg>)", "test.svg:2:1",
-              "more than 10 m from the page origin");
+              "more than 2 m from the page origin");
   CHECK_ERROR(std::string(kHead) + R"(<rect width="-1" height="10"/></svg>)", "test.svg:1:105",
               "negative width");
   CHECK_ERROR(std::string(kHead) + R"(<circle r="-1"/></svg>)", "test.svg:1:103", "negative r");

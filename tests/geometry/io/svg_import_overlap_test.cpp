@@ -104,3 +104,18 @@ TEST_CASE("subtractive: --background chooses the erasing colour") {
   // With white as background, the first white shape adds nothing (nothing below it to erase).
   CHECK(area_of(doc + "", mode(geo::SvgOverlap::Subtractive)) == doctest::Approx(20 * 40 + 20 * 40));
 }
+
+TEST_CASE("islands come out strictly connected: shapes touching at a point are separate") {
+  // Two squares sharing only a corner, drawn as two shapes and as one path.
+  for (const char* body : {R"(<rect width="10" height="10"/><rect x="10" y="10" width="10" height="10"/>)",
+                           R"(<path d="M0 0 H10 V10 H20 V20 H10 V10 H0 Z"/>)"}) {
+    CAPTURE(body);
+    geo::SvgModel m = parse_ok(page_mm(body));
+    CHECK(m.layers[0].polygons.size() == 2);
+    CHECK(geo::area_mm2(m.layers[0].polygons) == doctest::Approx(200));
+  }
+  // A zero-width spike sticking out of a square vanishes.
+  geo::SvgModel spike = parse_ok(page_mm(R"(<path d="M0 0 H10 V5 H20 H10 V10 H0 Z"/>)"));
+  REQUIRE(spike.layers[0].polygons.size() == 1);
+  CHECK(geo::bbox(spike.layers[0].polygons[0]).max_x == geo::to_units(10));
+}
