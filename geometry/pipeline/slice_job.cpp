@@ -1,5 +1,6 @@
 #include "geometry/pipeline/slice_job.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -116,6 +117,10 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
   progress.start("union", layers.size());
   if (auto st = geo::make_islands(layers, tick); !st) return st.error();
   progress.finish();
+  if (std::all_of(layers.begin(), layers.end(), [](const geo::Layer& l) { return l.islands.empty(); }))
+    return Error{options.model,
+                 "nothing to print: no layer has any material (a surface without volume?); check that the "
+                 "model is a closed solid"};
 
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
     progress.start("fill angles");

@@ -102,6 +102,16 @@ SCENARIO("errors the user can act on") {
     CHECK(r.error().message.find("flat") != std::string::npos);
     CHECK(!std::filesystem::exists(o.export_svg));
   }
+  GIVEN("a surface with no volume") {
+    Mesh fin;
+    fin.vertices = {{0, 0, 0}, {10, 0, 0}, {5, 0, 8}};
+    fin.triangles = {{0, 1, 2}};
+    o.model = write_model(dir, "fin.stl", fin);
+    auto r = run_slice(o, report);
+    REQUIRE(!r.ok());
+    CHECK(r.error().message.find("nothing to print") != std::string::npos);
+    CHECK(!std::filesystem::exists(o.export_svg));
+  }
   GIVEN("a missing model") {
     o.model = (dir / "nope.stl").string();
     auto r = run_slice(o, report);
