@@ -108,7 +108,7 @@ Ring follow(const std::vector<Ring>& chains, const std::vector<uint32_t>& next, 
 
 // Beyond this many open chains in one layer (after joining small gaps) every chain is closed on
 // itself instead of being matched with the others: keeps a shredded mesh from costing k².
-constexpr size_t kMaxMatchedChains = 2048;
+constexpr size_t kMaxMatchedChains = 512;
 
 // Closes open chains into loops. First, ends closer than `tol` (units) to a start are joined,
 // nearest pair first, silently. Then the chains still open are joined end → start, again nearest

@@ -62,7 +62,7 @@ void slice_all(Mesh mesh, Sliced& out, double layer_height = 0.2) {
   REQUIRE(plan.ok());
   out.layers = std::move(*plan);
   auto st = slice_mesh(mesh, out.layers, {}, out.report);
-  REQUIRE(st.ok());
+  REQUIRE_MESSAGE(st.ok(), (st.ok() ? "" : st.error().to_string()));
   out.stats = *st;
   REQUIRE(make_islands(out.layers).ok());
 }
@@ -411,5 +411,49 @@ SCENARIO("a flipped triangle in a fine mesh") {
     REQUIRE(s.layers.size() == 25);
     for (const auto& l : s.layers) CHECK(layer_area(l) == doctest::Approx(ngon).epsilon(1e-6));
     CHECK(s.report.empty());
+  }
+}
+
+SCENARIO("an unwelded triangle soup") {
+  // Every triangle has its own three vertices: no edge is shared, topology chains nothing.
+  Mesh welded_torus = torus(20, 8, 64, 32);
+  auto soup = [&](double jitter) {
+    Mesh m;
+    uint32_t k = 0;
+    for (const auto& t : welded_torus.triangles) {
+      for (auto v : t) {
+        Vec3 p = welded_torus.vertices[v];
+        p.x += jitter * (static_cast<int>(k * 7919 % 13) - 6) / 6.0;  // deterministic, up to ±jitter
+        p.y += jitter * (static_cast<int>(k * 104729 % 11) - 5) / 5.0;
+        m.vertices.push_back(p);
+        ++k;
+      }
+      m.triangles.push_back({k - 3, k - 2, k - 1});
+    }
+    return m;
+  };
+  Sliced ref;
+  slice_all(welded_torus, ref);
+  GIVEN("exact coordinates") {
+    Sliced s;
+    slice_all(soup(0), s);
+    THEN("the zero-length gaps are joined: the same areas, no warning") {
+      REQUIRE(s.layers.size() == ref.layers.size());
+      for (size_t i = 0; i < s.layers.size(); ++i)
+        CHECK(layer_area(s.layers[i]) == doctest::Approx(layer_area(ref.layers[i])).epsilon(1e-9));
+      CHECK(s.report.empty());
+      CHECK(s.stats.gaps_joined == 0);
+    }
+  }
+  GIVEN("vertices jittered by up to 0.01 mm") {
+    Sliced s;
+    slice_all(soup(0.01), s);
+    THEN("the gaps are under the tolerance: joined silently, areas within the jitter") {
+      REQUIRE(s.layers.size() == ref.layers.size());
+      for (size_t i = 0; i < s.layers.size(); ++i)
+        CHECK(layer_area(s.layers[i]) == doctest::Approx(layer_area(ref.layers[i])).epsilon(2e-3));
+      CHECK(s.report.count("open-loop") == 0);
+      CHECK(s.stats.gaps_joined > 0);
+    }
   }
 }
