@@ -92,7 +92,7 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
       break;
   }
   if (t.kind == Kind::Number && !t.unit.in_range()) {
-    sink_.error("E0209", e.span, fmt::format("the unit of this value, `{}`, is out of range", t.unit.name()),
+    sink_.error("E0208", e.span, fmt::format("the unit of this value, `{}`, is out of range", t.unit.name()),
                 "too many units multiplied together");
     t = Type::error();
   }
@@ -310,7 +310,7 @@ Type Checker::if_expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
   return Type::error();
 }
 
-// Folds constants, reporting operations that have no value (E0210).
+// Folds constants, reporting operations that have no value (E0209).
 void Checker::fold(Expr& e) {
   auto c = [&](size_t i) { return e.args[i]->constant; };
   auto all = [&] {
@@ -334,7 +334,7 @@ void Checker::fold(Expr& e) {
       break;
     case ExprKind::Binary: {
       if ((e.op == Op::Div || e.op == Op::Mod) && c(1) == 0.0) {
-        sink_.error("E0210", e.args[1]->span,
+        sink_.error("E0209", e.args[1]->span,
                     e.op == Op::Div ? "division by zero" : "remainder of a division by zero", "this is zero");
         e.type = Type::error();
         return;
@@ -354,7 +354,7 @@ void Checker::fold(Expr& e) {
         case Op::Div:
         case Op::Mod:
           if (b == 0) {
-            sink_.error("E0210", e.args[1]->span,
+            sink_.error("E0209", e.args[1]->span,
                         e.op == Op::Div ? "division by zero" : "remainder of a division by zero",
                         "this is zero");
             e.type = Type::error();
@@ -435,7 +435,7 @@ void Checker::fold(Expr& e) {
           break;
         case ast::Func::Sqrt:
           if (*c(0) < 0) {
-            sink_.error("E0210", e.args[0]->span, "square root of a negative number", "this is negative");
+            sink_.error("E0209", e.args[0]->span, "square root of a negative number", "this is negative");
             e.type = Type::error();
             return;
           }
@@ -464,7 +464,7 @@ void Checker::fold(Expr& e) {
   }
   if (!v) return;
   if (!std::isfinite(*v) || (e.type.kind == Kind::Int && std::abs(*v) > 9007199254740992.0)) {
-    sink_.error("E0210", e.span, "this value is out of range", "the result is too large");
+    sink_.error("E0209", e.span, "this value is out of range", "the result is too large");
     e.type = Type::error();
     return;
   }

@@ -145,7 +145,7 @@ void Checker::rule(ast::Rule& r) {
     for (const auto& slot : r.slots) require(*r.filter, limit_for(slot, r), r);
   conjuncts(r);
   if (r.actions.empty() && !r.from_set && user_file(sources_, r.span))
-    sink_.warning("W214", r.span, "this rule has no actions", "does nothing")
+    sink_.warning("W212", r.span, "this rule has no actions", "does nothing")
         .help("give it a modifier (`speed = 20 mm/s`), an executor or a replacer, or remove it");
 }
 
@@ -456,7 +456,7 @@ void Checker::loop(Stmt& s, Stmt& action, std::vector<Local>& locals, int nestin
       } else if (n <= 0) {
         if (user_file(sources_, range))
           sink_
-              .warning("W211", range,
+              .warning("W210", range,
                        fmt::format("the range `{}` is empty: the loop never runs", sources_.text(range)),
                        "no steps")
               .help("ranges count up and include both ends: `1..3` is 1, 2, 3");
@@ -521,7 +521,7 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
     bool allowed =
         p && (*p == schema::PropId::Speed || *p == schema::PropId::Flow || *p == schema::PropId::Width);
     if (!allowed) {
-      auto& d = sink_.error("E0412", o.name_span, fmt::format("`move ... with` cannot set `{}`", o.name),
+      auto& d = sink_.error("E0407", o.name_span, fmt::format("`move ... with` cannot set `{}`", o.name),
                             "not a move setting");
       if (auto best = suggest(o.name, {"speed", "flow", "width"}))
         d.help(fmt::format("did you mean `{}`?", *best));
@@ -530,7 +530,7 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
       continue;
     }
     if (!given.insert(o.name).second)
-      sink_.error("E0412", o.name_span, fmt::format("`{}` is given twice", o.name), "given again");
+      sink_.error("E0407", o.name_span, fmt::format("`{}` is given twice", o.name), "given again");
     o.prop = *p;
     const auto& info = schema::property(*p);
     expr(*o.value, ctx);
@@ -545,7 +545,7 @@ void Checker::text(ast::Template& t, ExprContext& ctx) {
     if (type.is_error()) continue;
     if (p.decimals >= 0 && !type.numeric())
       sink_
-          .error("E0208", p.span,
+          .error("E0207", p.span,
                  fmt::format("`:.{}` formats numbers, but this is {}", p.decimals, type.describe()),
                  "not a number")
           .help("remove the format: enum values print as their name, booleans as 1 or 0");
@@ -590,7 +590,7 @@ void Checker::unused_locals(std::vector<Local>& locals, size_t from) {
     const Local& l = locals[i];
     if (l.used || l.name.starts_with('_') || !user_file(sources_, l.span)) continue;
     if (l.loop)
-      sink_.warning("W210", l.span, fmt::format("loop variable `{}` is never used", l.name), "unused")
+      sink_.warning("W209", l.span, fmt::format("loop variable `{}` is never used", l.name), "unused")
           .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"));
     else
       sink_.warning("W200", l.span, fmt::format("`let {}` is never used", l.name), "unused")

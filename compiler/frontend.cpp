@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr size_t kMaxUseDepth = 64;
+constexpr size_t kMaxUseDepth = 16;  // files being read at once: profiles nest a few deep
 
 Result<std::string> read(const fs::path& path, const FrontendOptions& options) {
   if (options.read_file) {

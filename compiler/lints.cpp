@@ -151,7 +151,7 @@ void lint(const ast::Program& program, diag::Sink& sink) {
       facts[i].boxes = prover::to_boxes(*r.filter, space, sources, r.index);
   }
 
-  // Per-file duplicate rule names (W213).
+  // Per-file duplicate rule names (W211).
   std::map<std::pair<uint32_t, std::string>, const Rule*> names;
   // Slots: for each slot key, the rules that set it, in cascade order.
   std::map<uint32_t, std::vector<size_t>> by_slot;
@@ -164,7 +164,7 @@ void lint(const ast::Program& program, diag::Sink& sink) {
     if (r.has_name) {
       auto [it, fresh] = names.emplace(std::make_pair(r.span.file, r.name), &r);
       if (!fresh)
-        sink.warning("W213", r.span, fmt::format("two rules are named \"{}\"", r.name),
+        sink.warning("W211", r.span, fmt::format("two rules are named \"{}\"", r.name),
                      "second rule with this name")
             .label(it->second->span, "first one")
             .help("give each rule its own name: `rulec explain` and messages refer to rules by name");

@@ -199,7 +199,7 @@ void Checker::dependencies() {
         std::string names;
         for (const Dependency* e : cycle) names += fmt::format("`{}` → ", schema::property(e->from).name);
         names += fmt::format("`{}`", schema::property(d->to).name);
-        auto& diag = sink_.error("E0306", d->at, fmt::format("properties read each other: {}", names),
+        auto& diag = sink_.error("E0305", d->at, fmt::format("properties read each other: {}", names),
                                  fmt::format("`{}` reads `{}` here", schema::property(d->from).name,
                                              schema::property(d->to).name));
         for (const Dependency* e : cycle)

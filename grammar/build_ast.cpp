@@ -191,7 +191,7 @@ antlrcpp::Any AstBuilder::visitNumberLit(RulesParser::NumberLitContext* ctx) {
   if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value)) {
     failed_ = true;
     sink_
-        .error("E0007", number_span, fmt::format("number `{}` is out of range", text),
+        .error("E0006", number_span, fmt::format("number `{}` is out of range", text),
                "too large or too small to represent")
         .help("numbers must lie between about 1e-300 and 1e300");
     return {};
@@ -201,7 +201,7 @@ antlrcpp::Any AstBuilder::visitNumberLit(RulesParser::NumberLitContext* ctx) {
   if (e->integer_literal && value > 9007199254740992.0) {
     failed_ = true;
     sink_
-        .error("E0007", number_span, fmt::format("integer `{}` is too large", text),
+        .error("E0006", number_span, fmt::format("integer `{}` is too large", text),
                "integers are exact only up to 2^53")
         .help("write it as a decimal number if an approximation is fine");
     return {};

@@ -249,7 +249,7 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
   };
   auto fail = [&](uint32_t from, uint32_t to, std::string message, std::string label, std::string help) {
     failed_ = true;
-    auto& d = sink_.error("E0008", sources.span(in_.file(), from, to), std::move(message), std::move(label));
+    auto& d = sink_.error("E0007", sources.span(in_.file(), from, to), std::move(message), std::move(label));
     if (!help.empty()) d.help(std::move(help));
     return false;
   };

@@ -1,5 +1,5 @@
 // The rule-language parser: source text → AST (compiler/ast/ast.h). ANTLR stays behind this
-// header. Lexical and syntax errors become diagnostics (E0001–E0008); a file with any of them
+// header. Lexical and syntax errors become diagnostics (E0001–E0007); a file with any of them
 // yields no items, so the checker never sees a half-parsed file.
 #pragma once
 

@@ -72,10 +72,16 @@ inline Case parse_expectations(const std::string& text, const std::string& file)
 
 // Checks `text` as the file `dir/name` (uses resolve from `dir`, stdlib names from `stdlib`).
 // Returns a description of every mismatch; empty when the case passes.
+// With `default_ok`, a case without `# expect` lines must give no diagnostic (documentation
+// examples); otherwise it is an error to have none.
 inline std::string run_case(const std::filesystem::path& dir, const std::string& name,
-                            const std::string& text, const std::filesystem::path& stdlib) {
+                            const std::string& text, const std::filesystem::path& stdlib,
+                            bool default_ok = false) {
   Case c = parse_expectations(text, name);
-  if (!c.expect_ok && c.expected.empty()) return "no `# expect` line";
+  if (!c.expect_ok && c.expected.empty()) {
+    if (!default_ok) return "no `# expect` line";
+    c.expect_ok = true;
+  }
   compiler::FrontendOptions options;
   options.stdlib_dir = stdlib.string();
   diag::Sink sink;

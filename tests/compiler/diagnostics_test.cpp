@@ -1,0 +1,97 @@
+#include <doctest/doctest.h>
+
+#include "compiler/diagnostics.h"
+#include "tests/compiler/helpers.h"
+
+using namespace tranche;
+
+namespace {
+struct One {
+  test::Compiled c;
+  const diag::Diagnostic& d;
+  explicit One(const std::string& text) : d(init(text)) {}
+  const diag::Diagnostic& init(const std::string& text) {
+    test::compile_text(c, text);
+    c.sink.finish({});
+    REQUIRE(c.sink.all().size() == 1);
+    return c.sink.all()[0];
+  }
+};
+}  // namespace
+
+TEST_CASE("diagnostics: the text form, rustc style") {
+  One one("rule \"slow\" when layer.indx < 2 {\n  speed = 20 mm/s\n}\n");
+  std::string text = compiler::render_text(one.c.program.sources, one.d, false);
+  CHECK(text ==
+        "error[E0102]: unknown field `layer.indx`\n"
+        " --> test.rules:1:18\n"
+        "  |\n"
+        "1 | rule \"slow\" when layer.indx < 2 {\n"
+        "  |                  ^^^^^^^^^^ not a field of `layer`\n"
+        "  |\n"
+        "  = help: did you mean `layer.index`?\n");
+}
+
+TEST_CASE("diagnostics: secondary labels, notes, tabs and wide line numbers") {
+  std::string src;
+  for (int i = 0; i < 9; ++i) src += "# line\n";
+  src += "rule \"x\" when\tspeed > island.area { flow = 1 }\n";
+  One one(src);
+  std::string text = compiler::render_text(one.c.program.sources, one.d, false);
+  CHECK(text ==
+        "error[E0200]: cannot compare `mm/s` and `mm2`\n"
+        "  --> test.rules:10:21\n"
+        "   |\n"
+        "10 | rule \"x\" when    speed > island.area { flow = 1 }\n"
+        "   |                        ^ the units differ\n"
+        "   |                  ----- this is in `mm/s`\n"
+        "   |                          ----------- this is in `mm2`\n");
+}
+
+TEST_CASE("diagnostics: colour only when asked") {
+  One one("rule when layer.indx < 2 { flow = 1 }\n");
+  CHECK(compiler::render_text(one.c.program.sources, one.d, true).find("\x1b[") != std::string::npos);
+  CHECK(compiler::render_text(one.c.program.sources, one.d, false).find("\x1b[") == std::string::npos);
+}
+
+TEST_CASE("diagnostics: JSON, one object per diagnostic, with every span") {
+  One one("rule \"x\" when speed > island.area { flow = 1 }\n");
+  std::string json = compiler::render_json(one.c.program.sources, one.d);
+  CHECK(json ==
+        "{\"code\":\"E0200\",\"level\":\"error\",\"message\":\"cannot compare `mm/s` and `mm2`\",\"spans\":["
+        "{\"file\":\"test.rules\",\"line\":1,\"col\":21,\"end_line\":1,\"end_col\":22,\"byte_start\":20,"
+        "\"byte_end\":21,\"label\":\"the units differ\",\"primary\":true},"
+        "{\"file\":\"test.rules\",\"line\":1,\"col\":15,\"end_line\":1,\"end_col\":20,\"byte_start\":14,"
+        "\"byte_end\":19,\"label\":\"this is in `mm/s`\",\"primary\":false},"
+        "{\"file\":\"test.rules\",\"line\":1,\"col\":23,\"end_line\":1,\"end_col\":34,\"byte_start\":22,"
+        "\"byte_end\":33,\"label\":\"this is in `mm2`\",\"primary\":false}],\"notes\":[],\"helps\":[]}");
+}
+
+TEST_CASE("diagnostics: columns count characters, bytes count bytes") {
+  One one("rule \"größe\" when layer.indx < 2 { flow = 1 }\n");
+  ast::Span s = one.d.span();
+  CHECK(s.col == 19);
+  CHECK(s.offset == 20);  // ö and ß are two bytes each
+  CHECK(s.length == 10);
+}
+
+TEST_CASE("diagnostics: JSON strings escape quotes, backslashes and control characters") {
+  CHECK(compiler::json_string("a\"b\\c\nd\te\x01") == "\"a\\\"b\\\\c\\nd\\te\\u0001\"");
+  CHECK(compiler::json_string("größe") == "\"größe\"");
+}
+
+TEST_CASE("diagnostics: policy drops allowed warnings and promotes the rest") {
+  test::Compiled c;
+  test::compile_text(c, "rule \"x\" { }\nrule \"x\" { flow = 1 }\n");
+  REQUIRE(c.sink.warnings() == 2);  // W212 empty rule, W211 duplicate name
+  diag::Policy allow;
+  allow.allowed.insert("W212");
+  c.sink.finish(allow);
+  REQUIRE(c.sink.all().size() == 1);
+  CHECK(c.sink.all()[0].code == "W211");
+  diag::Policy deny;
+  deny.deny_warnings = true;
+  c.sink.finish(deny);
+  CHECK(c.sink.errors() == 1);
+  CHECK(compiler::summary(1, 0) == "1 error, 0 warnings");
+}
