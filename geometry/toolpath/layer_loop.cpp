@@ -91,7 +91,12 @@ class LayerTask {
     has_exec_ = s.rules.executors != nullptr;
     has_repl_path_ = s.rules.replacers && s.rules.replacers->has(Level::Path);
     has_repl_island_ = s.rules.replacers && s.rules.replacers->has(Level::Island);
-    need_pieces_ = per_piece_ || has_exec_ || has_repl_path_;
+    auto reads = [&](FieldId f) {
+      return (d && d->reads(f)) || (b && b->reads(f)) || (has_exec_ && s.rules.executors->reads(f)) ||
+             (s.rules.replacers && s.rules.replacers->reads(f));
+    };
+    need_support_ = reads(FieldId::IslandSupported) || reads(FieldId::IslandCovered);
+    need_overhang_ = reads(FieldId::PieceOverhang);
     height_ = s.layers[static_cast<size_t>(index)].height();
     filament_ = s.print_props[PropId::FilamentDiameter];
   }
@@ -174,8 +179,8 @@ class LayerTask {
   IslandsView islands_view_;
   double height_ = 0.2, filament_ = 1.75;
   double script_angle_ = kNoAngle;
-  bool per_piece_ = false, has_exec_ = false, has_repl_path_ = false, has_repl_island_ = false,
-       need_pieces_ = false;
+  bool per_piece_ = false, has_exec_ = false, has_repl_path_ = false, has_repl_island_ = false;
+  bool need_support_ = false, need_overhang_ = false;  // costly fields, computed only when read
   Level cooling_at_ = Level::Layer;
 };
 
@@ -286,8 +291,10 @@ void LayerTask::island_fields(IslandPlan& ip) {
     ip.center_x = geo::to_mm((b.min_x + b.max_x) / 2 + S.shift.X);
     ip.center_y = geo::to_mm((b.min_y + b.max_y) / 2 + S.shift.Y);
   }
-  ip.supported = L == 0 ? 1.0 : fraction_on(ip.shape, nb_.layer(-1));
-  ip.covered = fraction_on(ip.shape, nb_.layer(1));
+  if (need_support_) {
+    ip.supported = L == 0 ? 1.0 : fraction_on(ip.shape, nb_.layer(-1));
+    ip.covered = fraction_on(ip.shape, nb_.layer(1));
+  }
 }
 
 Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip) {
@@ -338,6 +345,7 @@ Status LayerTask::island_content(IslandPlan& ip) {
     p.perimeter = loop.depth;
     p.closed = true;
     p.width = static_cast<float>(spec.widths[static_cast<size_t>(loop.depth)]);
+    p.flow_scale = static_cast<float>(loop.flow_scale);
     p.pts = std::move(loop.ring);
     p.props = loop_props[static_cast<size_t>(loop.depth)];
     ip.paths.push_back(std::move(p));
@@ -474,7 +482,7 @@ Status LayerTask::path_level(IslandPlan* ip, PathPlan& p) {
 
 Status LayerTask::piece_level(PathPlan& p) {
   size_t n = p.piece_count();
-  if (need_pieces_ && L > 0 && n > 0) {
+  if (need_overhang_ && L > 0 && n > 0) {
     const EdgeGrid& below = nb_.below_grid();
     p.overhang.assign(n, 0.0f);
     double half = 0.5 * p.width * geo::kUnitsPerMm;

@@ -19,6 +19,9 @@ struct Loop {
   geo::Ring ring;  // centreline; counter-clockwise around material, clockwise around holes
   int depth = 0;   // 0 = outer perimeter
   bool hole = false;
+  // Below 1 for a thin wall: an island too thin for any loop is printed as one loop around
+  // its core with the flow scaled so that the plastic matches the island's area.
+  double flow_scale = 1.0;
 };
 
 struct PerimeterSpec {

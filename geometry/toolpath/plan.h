@@ -64,7 +64,8 @@ struct IslandPlan {
   int index = 0;
   geo::Rings shape;  // outline and holes after any replacer offset
   // island.* fields, in the units of fields.def (mm, mm², ratio)
-  double area = 0, border_length = 0, supported = 1, covered = 0;
+  double area = 0, border_length = 0;
+  double supported = 0, covered = 0;                          // computed only when a rule reads them
   double size_x = 0, size_y = 0, center_x = 0, center_y = 0;  // centre in bed coordinates
   int holes = 0;
   ctx::PropertyValues props;  // as decided at the island stage

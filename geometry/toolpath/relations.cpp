@@ -1,5 +1,8 @@
 #include "geometry/toolpath/relations.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::toolpath {
@@ -42,12 +45,28 @@ const geo::Rings& Neighbours::all_below(int n) {
   return below_[static_cast<size_t>(n - 1)];
 }
 
-const EdgeGrid& Neighbours::below_grid() {
-  if (!below_grid_built_) {
-    below_grid_ = EdgeGrid(layer(-1));
-    below_grid_built_ = true;
+const EdgeGrid& Neighbours::grid(int k) {
+  auto it = grids_.find(k);
+  if (it != grids_.end()) return it->second;
+  return grids_.emplace(k, EdgeGrid(layer(k))).first->second;
+}
+
+bool Neighbours::covers(int k, const geo::Rings& region, const EdgeGrid& region_grid) {
+  int i = index_ + k;
+  if (i < 0 || static_cast<size_t>(i) >= layers_.size()) return false;
+  const geo::Rings& m = layer(k);
+  const EdgeGrid& g = grid(k);
+  for (const auto& r : region) {
+    if (r.empty()) continue;
+    if (!g.inside(r.front())) return false;
+    for (size_t j = 0; j < r.size(); ++j)
+      if (g.crosses(r[j], r[(j + 1) % r.size()])) return false;
   }
-  return below_grid_;
+  // No boundary crossing and every region ring inside: only a hole of the layer lying wholly
+  // within the region could still uncover part of it.
+  for (const auto& r : m)
+    if (!r.empty() && !ClipperLib::Orientation(r) && region_grid.inside(r.front())) return false;
+  return true;
 }
 
 double fraction_on(const geo::Rings& island, const geo::Rings& other) {
@@ -57,62 +76,112 @@ double fraction_on(const geo::Rings& island, const geo::Rings& other) {
   return std::clamp(on / a, 0.0, 1.0);
 }
 
+const geo::Rings& Neighbours::keep_sparse(int top, int bottom) {
+  auto key = std::make_pair(top, bottom);
+  auto it = keep_.find(key);
+  if (it != keep_.end()) return it->second;
+  // The intersection of n layers in one sweep: with n − 1 clockwise rectangles around
+  // everything, exactly the points inside all n layers have a positive winding number.
+  geo::Rings all;
+  int n = 0;
+  bool outside = false;
+  auto add = [&](int k) {
+    int i = index_ + k;
+    if (i < 0 || static_cast<size_t>(i) >= layers_.size()) outside = true;
+    const auto& m = layer(k);
+    all.insert(all.end(), m.begin(), m.end());
+    ++n;
+  };
+  for (int k = 1; k <= top; ++k) add(k);
+  for (int k = 1; k <= bottom; ++k) add(-k);
+  geo::Rings result;
+  if (n == 0) {
+    result = layer(0);
+  } else if (!outside) {
+    geo::BBox2 b = bbox(all);
+    if (!b.empty()) {
+      geo::Ring frame{{b.min_x - 1000, b.min_y - 1000},
+                      {b.min_x - 1000, b.max_y + 1000},
+                      {b.max_x + 1000, b.max_y + 1000},
+                      {b.max_x + 1000, b.min_y - 1000}};
+      for (int i = 1; i < n; ++i) all.push_back(frame);
+      ClipperLib::Clipper c;
+      c.AddPaths(all, ClipperLib::ptSubject, true);
+      c.Execute(ClipperLib::ctUnion, result, ClipperLib::pftPositive, ClipperLib::pftPositive);
+    }
+  }
+  return keep_.emplace(key, std::move(result)).first->second;
+}
+
+namespace {
+// Drops rings of tiny area (slivers left by booleans), and holes whose outer went with them
+// cannot occur: Clipper nests holes inside outers larger than them.
+geo::Rings drop_small(geo::Rings r, double min_mm2) {
+  const double min_units = min_mm2 * geo::kUnitsPerMm * geo::kUnitsPerMm;
+  r.erase(std::remove_if(r.begin(), r.end(),
+                         [&](const geo::Ring& x) { return std::abs(ClipperLib::Area(x)) < min_units; }),
+          r.end());
+  return r;
+}
+}  // namespace
+
 std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const SolidSpec& spec) {
   std::vector<FillRegion> out;
   if (fill.empty()) return out;
   const double w = spec.width;
-  const bool all_solid = spec.density >= 1.0 - 1e-9;
-  auto clean = [&](geo::Rings r) { return offset_open(r, 0, 0.25 * w); };
+  const double tiny = w * w;  // mm²: smaller pieces are not worth a path of their own
   if (nb.index() == 0) {
     out.push_back({PathKind::BottomSolid, fill});
     return out;
   }
+  const bool all_solid = spec.density >= 1.0 - 1e-9;
+  // Solid wherever one of the next top_layers or of the bottom_layers below does not cover
+  // the fill: the union of fill − layer over the layers that do not cover it (cheap exact
+  // tests find those; deep inside the part there are none).
+  EdgeGrid fill_grid(fill);
   geo::BBox2 box = bbox(fill);
-  // Solid wherever the next top_layers or the bottom_layers below do not all cover this spot.
   geo::Rings solid;
-  {
-    geo::Rings keep;  // covered on both sides: may stay sparse
-    bool up = spec.top_layers > 0, down = spec.bottom_layers > 0;
-    if (up && down) {
-      keep =
-          intersection(near(nb.all_above(spec.top_layers), box), near(nb.all_below(spec.bottom_layers), box));
-    } else if (up) {
-      keep = near(nb.all_above(spec.top_layers), box);
-    } else if (down) {
-      keep = near(nb.all_below(spec.bottom_layers), box);
-    } else {
-      keep = fill;
+  bool open_above = true, open_below = true;  // layer ±1 does not cover the fill
+  auto consider = [&](int k) {
+    if (nb.covers(k, fill, fill_grid)) {
+      if (k == 1) open_above = false;
+      if (k == -1) open_below = false;
+      return;
     }
-    solid = clean(difference(fill, keep));
-  }
-  geo::Rings bridge, top;
-  if (spec.bottom_layers > 0) bridge = clean(difference(fill, near(nb.layer(-1), box)));
-  if (spec.top_layers > 0) {
-    top = difference(fill, near(nb.layer(1), box));
-    if (!bridge.empty()) top = difference(top, bridge);
-    top = clean(top);
-  }
-  if (all_solid) {
-    geo::Rings rest = difference(fill, union_of(bridge, top));
-    if (!bridge.empty()) out.push_back({PathKind::Bridge, bridge});
-    if (!top.empty()) out.push_back({PathKind::TopSolid, top});
-    rest = clean(rest);
-    if (!rest.empty()) out.push_back({PathKind::SolidInfill, rest});
-    return out;
-  }
-  if (solid.empty()) {
+    geo::Rings part = difference(fill, near(nb.layer(k), box));
+    solid = solid.empty() ? std::move(part) : union_of(solid, part);
+  };
+  for (int k = 1; k <= spec.top_layers; ++k) consider(k);
+  for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
+  if (spec.top_layers <= 0) open_above = false;
+  if (spec.bottom_layers <= 0) open_below = false;
+  // Strips narrower than half a bead (steep slopes) are left to the sparse fill.
+  geo::Rings core = drop_small(offset(drop_small(std::move(solid), tiny), -0.25 * w), 0.05 * tiny);
+  if (core.empty() && !all_solid) {
     out.push_back({PathKind::Infill, fill});
     return out;
   }
-  // Anchor the skins one bead into the sparse region.
-  solid = intersection(offset(solid, w), fill);
-  geo::Rings internal = solid;
-  if (!bridge.empty() || !top.empty()) internal = clean(difference(solid, union_of(bridge, top)));
-  geo::Rings sparse = clean(difference(fill, solid));
-  if (!bridge.empty()) out.push_back({PathKind::Bridge, bridge});
-  if (!internal.empty()) out.push_back({PathKind::SolidInfill, internal});
-  if (!top.empty()) out.push_back({PathKind::TopSolid, top});
-  if (!sparse.empty()) out.push_back({PathKind::Infill, sparse});
+  // Skins are anchored one bead into the sparse region around them.
+  geo::Rings grown = all_solid ? fill : intersection(offset(core, 0.25 * w + w), fill);
+  geo::Rings skin = offset(core, 0.25 * w);
+  geo::BBox2 sbox = bbox(skin);
+  geo::Rings bridge, top;
+  if (open_below && !skin.empty()) bridge = drop_small(difference(skin, near(nb.layer(-1), sbox)), tiny);
+  if (open_above && !skin.empty()) {
+    geo::Rings clip = near(nb.layer(1), sbox);
+    clip.insert(clip.end(), bridge.begin(), bridge.end());  // non-zero union of both as the clip
+    top = drop_small(difference(skin, clip), tiny);
+  }
+  geo::Rings exposed = bridge;
+  exposed.insert(exposed.end(), top.begin(), top.end());
+  geo::Rings internal = drop_small(exposed.empty() ? grown : difference(grown, exposed), tiny);
+  if (!bridge.empty()) out.push_back({PathKind::Bridge, std::move(bridge)});
+  if (!internal.empty()) out.push_back({PathKind::SolidInfill, std::move(internal)});
+  if (!top.empty()) out.push_back({PathKind::TopSolid, std::move(top)});
+  if (!all_solid) {
+    geo::Rings sparse = drop_small(difference(fill, grown), tiny);
+    if (!sparse.empty()) out.push_back({PathKind::Infill, std::move(sparse)});
+  }
   return out;
 }
 

@@ -31,16 +31,24 @@ class Neighbours {
   // outside the print (a top or the bed-side bottom).
   const geo::Rings& all_above(int n);
   const geo::Rings& all_below(int n);
+  // Where a spot stays sparse: covered by all `top` layers above and all `bottom` layers below
+  // (either count may be 0: that side does not matter).
+  const geo::Rings& keep_sparse(int top, int bottom);
   // Material below this layer as an edge grid (overhang, bridges).
-  const EdgeGrid& below_grid();
+  const EdgeGrid& below_grid() { return grid(-1); }
+  // Material of layer index + k as an edge grid.
+  const EdgeGrid& grid(int k);
+  // Whether layer index + k covers all of `region` (whose own grid is `region_grid`): exact
+  // segment and point tests, much cheaper than a boolean; touching counts as not covered.
+  bool covers(int k, const geo::Rings& region, const EdgeGrid& region_grid);
 
  private:
   std::span<const geo::Layer> layers_;
   int index_;
   std::map<int, geo::Rings> material_;
   std::vector<geo::Rings> above_, below_;  // [n-1] = intersection of the n nearest layers
-  bool below_grid_built_ = false;
-  EdgeGrid below_grid_;
+  std::map<std::pair<int, int>, geo::Rings> keep_;
+  std::map<int, EdgeGrid> grids_;
 };
 
 // Fraction of `island` (area) lying on `other` (0..1); 0 for an empty island.

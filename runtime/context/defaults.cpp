@@ -64,4 +64,10 @@ schema::Level BuiltinDefaults::varies_at(schema::Stage stage) const {
   return varies_[static_cast<size_t>(stage)];
 }
 
+bool BuiltinDefaults::reads(schema::FieldId field) const {
+  for (const auto& r : kRules)
+    if (r.test != T::Always && r.field == field) return true;
+  return false;
+}
+
 }  // namespace tranche::ctx

@@ -28,6 +28,7 @@ class BuiltinDefaults final : public Decider {
   BuiltinDefaults();
   Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
   schema::Level varies_at(schema::Stage stage) const override;
+  bool reads(schema::FieldId field) const override;
 
  private:
   schema::Level varies_[schema::kStageCount];

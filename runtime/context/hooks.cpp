@@ -18,4 +18,10 @@ schema::Level DeciderChain::varies_at(schema::Stage stage) const {
   return level;
 }
 
+bool DeciderChain::reads(schema::FieldId field) const {
+  for (const Decider* d : chain_)
+    if (d->reads(field)) return true;
+  return false;
+}
+
 }  // namespace tranche::ctx

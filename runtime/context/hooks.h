@@ -28,6 +28,9 @@ class Decider {
   // once per element of that level and reuses the result below it (hoisting): Level::Path for
   // Stage::Piece means speed and flow do not vary along a path, so there is no per-piece call.
   virtual schema::Level varies_at(schema::Stage stage) const = 0;
+  // Whether any decision reads `field`. Fields nobody reads and that are costly to compute
+  // (island.supported, island.covered, piece.overhang) are then left at 0.
+  virtual bool reads(schema::FieldId) const { return true; }
 };
 
 // Applies several deciders in cascade order (later ones see and override earlier ones).
@@ -38,6 +41,7 @@ class DeciderChain final : public Decider {
   }
   Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
   schema::Level varies_at(schema::Stage stage) const override;
+  bool reads(schema::FieldId field) const override;
 
  private:
   std::vector<const Decider*> chain_;
@@ -59,6 +63,8 @@ class Executors {
   // Whether any executor is attached to this hook: the loop skips preparing the context (path
   // points, pieces) for hooks nobody uses.
   virtual bool has(schema::Level level, When when) const = 0;
+  // Whether any executor reads `field` (see Decider::reads).
+  virtual bool reads(schema::FieldId) const { return true; }
   // Emits the hook's G-code for the element `ctx` describes (nothing when no filter matches).
   virtual Status run(schema::Level level, When when, const Context& ctx, LineSink& out) const = 0;
 };
@@ -94,6 +100,8 @@ class Replacers {
   virtual ~Replacers() = default;
   // Whether any replacer exists for the level (Island or Path).
   virtual bool has(schema::Level level) const = 0;
+  // Whether any replacer reads `field` (see Decider::reads).
+  virtual bool reads(schema::FieldId) const { return true; }
   // Runs the replacer that matches the element, if any, and returns whether one did (false:
   // the default output is used). An altered element is not offered to replacers again.
   virtual Result<bool> replace(schema::Level level, const Context& ctx, ReplaceApi& api) const = 0;

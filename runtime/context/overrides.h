@@ -32,6 +32,7 @@ class Overrides final : public Decider {
   const std::vector<Override>& items() const { return items_; }
   Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
   schema::Level varies_at(schema::Stage) const override { return schema::Level::Print; }
+  bool reads(schema::FieldId) const override { return false; }
 
  private:
   std::vector<Override> items_;

@@ -163,3 +163,15 @@ TEST_CASE("zig-zag: any angle, the lines keep the requested direction and pitch"
   for (size_t i = 1; i < offsets.size(); ++i)
     CHECK(offsets[i] - offsets[i - 1] == Approx(0.8 * p.pitch_ratio).epsilon(1e-3));
 }
+
+TEST_CASE("perimeters: an island thinner than a bead is a thin wall with its flow scaled to its area") {
+  geo::Rings sliver{test::rect(0, 0, 10, 0.3)};
+  auto per = make_perimeters(sliver, PerimeterSpec{});
+  REQUIRE(per.loops.size() == 1);
+  const auto& l = per.loops[0];
+  CHECK(l.flow_scale < 1.0);
+  // Plastic laid = loop length × bead spacing × scale = the island's area.
+  double s = 0.45 - 0.2 * (1 - M_PI / 4);
+  CHECK(geo::length_mm(l.ring) * s * l.flow_scale == Approx(3.0).epsilon(0.01));
+  CHECK(per.fill_region.empty());
+}

@@ -141,3 +141,19 @@ TEST_CASE("--set overrides win over the built-in defaults at the property's stag
   CHECK(decided(chain, Stage::Island, c, PropId::FillAngle) == 45);
   CHECK(chain.varies_at(Stage::Piece) == Level::Path);
 }
+
+TEST_CASE("deciders say which fields they read, so costly unread fields are skipped") {
+  BuiltinDefaults b;
+  CHECK(b.reads(FieldId::PathKind));
+  CHECK(b.reads(FieldId::LayerIndex));
+  CHECK_FALSE(b.reads(FieldId::IslandSupported));
+  CHECK_FALSE(b.reads(FieldId::PieceOverhang));
+  auto o = Overrides::parse({{"speed", "33"}});
+  REQUIRE(o.ok());
+  CHECK_FALSE(o->reads(FieldId::LayerIndex));
+  DeciderChain chain;
+  chain.add(&*o);
+  CHECK_FALSE(chain.reads(FieldId::PathKind));
+  chain.add(&b);
+  CHECK(chain.reads(FieldId::PathKind));
+}

@@ -1,0 +1,96 @@
+#include <doctest/doctest.h>
+
+#include "fixtures.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/relations.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+using doctest::Approx;
+using schema::PathKind;
+
+namespace {
+double area_of(const std::vector<FillRegion>& regions, PathKind k) {
+  double a = 0;
+  for (const auto& r : regions)
+    if (r.kind == k) a += area_mm2(r.rings);
+  return a;
+}
+}  // namespace
+
+TEST_CASE("relations: top, bottom and sparse regions of a solid block") {
+  geo::Polygon sq{test::rect(0, 0, 20, 20), {}};
+  auto layers = test::stack(20, 0.2, sq);
+  geo::Rings fill{test::rect(2, 2, 18, 18)};
+  SolidSpec spec;
+  {  // layer 0: all bottom
+    Neighbours nb(layers, 0);
+    auto r = split_fill(fill, nb, spec);
+    REQUIRE(r.size() == 1);
+    CHECK(r[0].kind == PathKind::BottomSolid);
+  }
+  {  // layer 2: within bottom_layers of the bed: solid, nothing exposed
+    Neighbours nb(layers, 2);
+    auto r = split_fill(fill, nb, spec);
+    CHECK(area_of(r, PathKind::SolidInfill) == Approx(256).epsilon(1e-3));
+    CHECK(area_of(r, PathKind::Infill) == 0);
+  }
+  {  // layer 10: deep inside: sparse only
+    Neighbours nb(layers, 10);
+    auto r = split_fill(fill, nb, spec);
+    REQUIRE(r.size() == 1);
+    CHECK(r[0].kind == PathKind::Infill);
+    CHECK(nb.covers(1, fill, EdgeGrid(fill)));
+  }
+  {  // last layer: top skin
+    Neighbours nb(layers, 19);
+    auto r = split_fill(fill, nb, spec);
+    CHECK(area_of(r, PathKind::TopSolid) == Approx(256).epsilon(1e-3));
+  }
+  {  // two below the top: internal solid (covered by the next layer, not by all three)
+    Neighbours nb(layers, 17);
+    auto r = split_fill(fill, nb, spec);
+    CHECK(area_of(r, PathKind::SolidInfill) == Approx(256).epsilon(1e-3));
+    CHECK(area_of(r, PathKind::TopSolid) == 0);
+  }
+  {  // fully solid density: no sparse region anywhere
+    SolidSpec full = spec;
+    full.density = 1.0;
+    Neighbours nb(layers, 10);
+    auto r = split_fill(fill, nb, full);
+    CHECK(area_of(r, PathKind::Infill) == 0);
+    CHECK(area_of(r, PathKind::SolidInfill) == Approx(256).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("relations: a step gives a bridge over empty space and a top under nothing") {
+  // Layers 0-4: 10 × 20; layers 5-9: 20 × 20, overhanging by 10 mm.
+  auto layers = test::stack(10, 0.2, geo::Polygon{test::rect(0, 0, 20, 20), {}});
+  for (int i = 0; i < 5; ++i)
+    layers[static_cast<size_t>(i)].islands[0].shape.outer = test::rect(0, 0, 10, 20);
+  geo::Rings fill{test::rect(1, 1, 19, 19)};
+  Neighbours nb(layers, 5);
+  auto r = split_fill(fill, nb, SolidSpec{});
+  CHECK(area_of(r, PathKind::Bridge) == Approx(9 * 18).epsilon(0.02));
+  CHECK(area_of(r, PathKind::TopSolid) == 0);
+  // Over the lower block the fill stays sparse, save a one-bead anchor beside the bridge.
+  CHECK(area_of(r, PathKind::Infill) == Approx((9 - 0.45) * 18).epsilon(0.02));
+  CHECK(area_of(r, PathKind::SolidInfill) == Approx(0.45 * 18).epsilon(0.1));
+  double total = 0;
+  for (const auto& x : r) total += area_mm2(x.rings);
+  CHECK(total == Approx(18 * 18).epsilon(1e-3));
+  // Layer 4: the part under the step's edge is covered; its own top region is where layer 5
+  // does not reach: none (layer 5 is larger).
+  Neighbours nb4(layers, 4);
+  geo::Rings fill4{test::rect(1, 1, 9, 19)};
+  auto r4 = split_fill(fill4, nb4, SolidSpec{});
+  CHECK(area_of(r4, PathKind::TopSolid) == 0);
+  CHECK(area_of(r4, PathKind::Bridge) == 0);
+}
+
+TEST_CASE("relations: fraction of an island supported by the layer below") {
+  geo::Rings isl{test::rect(0, 0, 10, 10)};
+  geo::Rings below{test::rect(0, 0, 5, 10)};
+  CHECK(fraction_on(isl, below) == Approx(0.5));
+  CHECK(fraction_on(isl, {}) == 0);
+}
