@@ -79,10 +79,11 @@ class PrintWriter final : public ctx::LineSink {
   Status decide_print() {
     const auto& layers = job_.layers;
     // Model extent from the layers; the model is centred on the bed.
-    geo::BBox2 box;
-    for (const auto& l : layers)
-      for (const auto& isl : l.islands)
-        for (const auto& p : isl.shape.outer) box.add(p);
+    geo::BBox2 box = job_.model_box;
+    if (box.empty())
+      for (const auto& l : layers)
+        for (const auto& isl : l.islands)
+          for (const auto& p : isl.shape.outer) box.add(p);
     table_ = ctx::LayerTable(layers.size());
     for (size_t i = 0; i < layers.size(); ++i) {
       const auto& l = layers[i];

@@ -21,7 +21,8 @@ struct GcodeJob {
   std::span<const geo::Layer> layers;  // every layer, islands resolved
   ctx::Rules rules;                    // cascade (defaults, rules, --set), executors, replacers
   std::string model_name;
-  double model_volume_mm3 = 0;                            // for print.volume
+  double model_volume_mm3 = 0;  // for print.volume
+  geo::BBox2 model_box;         // XY extent centred on the bed; empty: the layers' extent
   std::vector<std::pair<std::string, std::string>> sets;  // --set as given, for the header
   std::string stdlib;                                     // empty: stdlib_dir()
   int threads = 0;                                        // 0: TBB's default

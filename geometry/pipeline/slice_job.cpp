@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "geometry/fillangle/fill_angle.h"
+#include "geometry/gcode/print.h"
 #include "geometry/io/layers_json.h"
 #include "geometry/io/svg_export.h"
 #include "geometry/io/svg_import.h"
@@ -17,6 +18,7 @@
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
+#include "runtime/context/cascade.h"
 
 namespace tranche::pipeline {
 namespace {
@@ -29,9 +31,8 @@ bool ends_with_svg(const std::string& path) {
 
 // Options that later stages will honour; until then the user hears that they were ignored.
 void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
-  if (!o.rules.empty() || !o.sets.empty())
-    report.warn("not-implemented", "",
-                "--rules and --set are not applied yet: layers are 0.2 mm, first layer 0.2 mm");
+  if (!o.rules.empty())
+    report.warn("not-implemented", "", "--rules are not applied yet (--set is): the rule VM is not in this build");
   if (o.overlap != OverlapMode::Additive && !svg)
     report.warn("not-implemented", "",
                 "--overlap is not applied yet: overlapping shells are united (additive)");
@@ -111,8 +112,15 @@ Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report
 }
 
 // The stages after slicing, shared by STL and SVG input.
+// What the G-code stage needs to know about the model besides its layers.
+struct ModelInfo {
+  double volume_mm3 = 0;
+  geo::BBox2 box;  // XY extent (units); empty: the layers' extent
+};
+
 Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summary,
-                            geo::FillAngleScript* script, const SliceOptions& options, Progress& progress) {
+                            geo::FillAngleScript* script, const SliceOptions& options, Progress& progress,
+                            const ctx::Cascade& cascade, const ModelInfo& model, Report& report) {
   auto tick = [&](size_t done) { progress.update(done); };
   progress.start("union", layers.size());
   if (auto st = geo::make_islands(layers, tick); !st) return st.error();
@@ -143,17 +151,48 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
     progress.finish();
     summary.written.push_back(options.export_layers);
   }
+  if (!options.output_gcode.empty()) {
+    progress.start("gcode", layers.size());
+    gcode::GcodeJob job;
+    job.output = options.output_gcode;
+    job.layers = layers;
+    job.rules = cascade.rules();
+    job.model_name = options.model;
+    job.model_volume_mm3 = model.volume_mm3;
+    job.model_box = model.box;
+    job.sets = options.sets;
+    auto g = gcode::write_gcode(job, report);
+    if (!g) return g.error();
+    progress.finish(fmt::format("{} layers, {:.2f} m of filament, {}", g->layers, g->filament_mm / 1000,
+                                gcode::format_duration(g->time_s)));
+    summary.written.push_back(options.output_gcode);
+  }
   return summary;
+}
+
+// Layer heights from the cascade (layer_height, first_layer_height, --set).
+Result<geo::LayerPlanParams> layer_heights(const ctx::Cascade& cascade, const ctx::Context& print, Status& error) {
+  auto props = cascade.print_props(print);
+  if (!props) return props.error();
+  geo::LayerPlanParams params;
+  params.height = [&cascade, print, p = *props, &error](int index, double z_bottom) {
+    auto h = cascade.layer_height(print, p, index, z_bottom);
+    if (!h) {
+      if (error) error = h.error();
+      return 0.2;
+    }
+    return *h;
+  };
+  return params;
 }
 
 }  // namespace
 
 Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
-  if (!options.output_gcode.empty())
-    return Error{options.output_gcode,
-                 "G-code output is not implemented yet; use --export-svg/--export-layers"};
-  if (options.export_svg.empty() && options.export_layers.empty())
-    return Error{"", "nothing to write: give --export-svg FILE and/or --export-layers FILE"};
+  if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty())
+    return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE and/or --export-layers FILE"};
+  auto cascade = ctx::Cascade::create(options.sets);  // a bad --set fails before any work
+  if (!cascade) return cascade.error();
   const bool svg = ends_with_svg(options.model);
   warn_unapplied(options, svg, report);
   Progress progress(!options.quiet);
@@ -171,7 +210,7 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
     auto layers = svg_layers(options, report);
     if (!layers) return layers.error();
     progress.finish(fmt::format("{} layers", layers->size()));
-    return finish(*layers, summary, script.get(), options, progress);
+    return finish(*layers, summary, script.get(), options, progress, **cascade, ModelInfo{}, report);
   }
 
   progress.start("load");
@@ -182,7 +221,20 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   warn_topology(topology, options.model, report);
   progress.finish(fmt::format("{} triangles", mesh->triangles.size()));
 
-  auto layers = geo::plan_layers(mesh->bbox().max.z, {});
+  const geo::BBox3 box = mesh->bbox();
+  ModelInfo model{mesh->volume(), {}};
+  model.box.add(geo::to_point(box.min.x, box.min.y));
+  model.box.add(geo::to_point(box.max.x, box.max.y));
+  ctx::Context print;
+  print.set(schema::FieldId::PrintHeight, box.max.z);
+  print.set(schema::FieldId::PrintSizeX, box.max.x - box.min.x);
+  print.set(schema::FieldId::PrintSizeY, box.max.y - box.min.y);
+  print.set(schema::FieldId::PrintVolume, model.volume_mm3);
+  Status height_error = ok_status();
+  auto heights = layer_heights(**cascade, print, height_error);
+  if (!heights) return heights.error();
+  auto layers = geo::plan_layers(box.max.z, *heights);
+  if (!height_error) return height_error.error();
   if (!layers) return Error{options.model, layers.error().to_string()};
 
   progress.start("slice", layers->size());
@@ -192,7 +244,7 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   if (!stats) return Error{options.model + ": " + stats.error().where, stats.error().message};
   progress.finish(fmt::format("{} layers, {} loops", layers->size(), stats->loops));
   summary.triangles = mesh->triangles.size();
-  return finish(*layers, summary, script.get(), options, progress);
+  return finish(*layers, summary, script.get(), options, progress, **cascade, model, report);
 }
 
 }  // namespace tranche::pipeline

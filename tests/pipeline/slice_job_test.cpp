@@ -78,11 +78,12 @@ SCENARIO("errors the user can act on") {
   o.quiet = true;
   o.model = write_model(dir, "cube.stl", box({10, 10, 10}));
   o.export_svg = (dir / "out.svg").string();
-  GIVEN("-o, before G-code exists") {
+  GIVEN("-o with a --set that names no property") {
     o.output_gcode = (dir / "out.gcode").string();
+    o.sets = {{"layer_hieght", "0.1"}};
     auto r = run_slice(o, report);
     REQUIRE(!r.ok());
-    CHECK(r.error().message == "G-code output is not implemented yet; use --export-svg/--export-layers");
+    CHECK(r.error().message.find("did you mean layer_height") != std::string::npos);
     CHECK(files_in(dir.path()) == 1);  // nothing written
   }
   GIVEN("no output at all") {

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "runtime/context/cascade.h"
 #include "runtime/context/context.h"
 #include "runtime/context/defaults.h"
 #include "runtime/context/overrides.h"
@@ -156,4 +157,34 @@ TEST_CASE("deciders say which fields they read, so costly unread fields are skip
   CHECK_FALSE(chain.reads(FieldId::PathKind));
   chain.add(&b);
   CHECK(chain.reads(FieldId::PathKind));
+}
+
+TEST_CASE("cascade: layer heights follow first_layer_height, layer_height and --set") {
+  Context print;
+  {
+    auto c = Cascade::create({});
+    REQUIRE(c.ok());
+    auto p = (*c)->print_props(print);
+    REQUIRE(p.ok());
+    CHECK(*(*c)->layer_height(print, *p, 0, 0.0) == doctest::Approx(0.2));
+    CHECK(*(*c)->layer_height(print, *p, 5, 1.0) == doctest::Approx(0.2));
+  }
+  {
+    auto c = Cascade::create({{"first_layer_height", "0.3"}, {"layer_height", "0.15mm"}});
+    REQUIRE(c.ok());
+    auto p = (*c)->print_props(print);
+    REQUIRE(p.ok());
+    CHECK((*p)[PropId::FirstLayerHeight] == doctest::Approx(0.3));
+    // --set layer_height is a rule without a filter: it wins on layer 0 too.
+    CHECK(*(*c)->layer_height(print, *p, 0, 0.0) == doctest::Approx(0.15));
+    CHECK(*(*c)->layer_height(print, *p, 3, 0.6) == doctest::Approx(0.15));
+  }
+  {
+    auto c = Cascade::create({{"first_layer_height", "0.3"}});
+    REQUIRE(c.ok());
+    auto p = (*c)->print_props(print);
+    CHECK(*(*c)->layer_height(print, *p, 0, 0.0) == doctest::Approx(0.3));
+    CHECK(*(*c)->layer_height(print, *p, 1, 0.3) == doctest::Approx(0.2));
+  }
+  CHECK_FALSE(Cascade::create({{"layer_hieght", "0.1"}}).ok());
 }
