@@ -75,15 +75,14 @@ class EdgeIndex {
 }  // namespace
 
 Result<BridgedPath> bridge_holes(const Polygon& shape) {
-  PlanarGraph g;
-  std::vector<Ring> rings;
+  Rings rings;
   auto oriented = [](const Ring& r, bool ccw) {
     const exact::i128 a = exact::area2(r);
     return (a > 0) == ccw ? r : Ring(r.rbegin(), r.rend());
   };
   rings.push_back(oriented(shape.outer, true));
   for (const Ring& h : shape.holes) rings.push_back(oriented(h, false));
-  for (const Ring& r : rings) g.add_ring(r);
+  PlanarGraph g(rings);
 
   // Rings sharing a point are already one path there.
   const int nr = static_cast<int>(rings.size());
@@ -92,10 +91,11 @@ Result<BridgedPath> bridge_holes(const Polygon& shape) {
   std::vector<std::pair<Point, Point>> edges;
   BBox2 box;
   for (int r = 0; r < nr; ++r) {
-    for (size_t i = 0; i < rings[r].size(); ++i) {
-      const int v = g.find_vertex(rings[r][i]);
+    for (const int v : g.ring_vertices()[r]) {
       if (ring_of[v] >= 0) joined.unite(ring_of[v], r);
       ring_of[v] = r;
+    }
+    for (size_t i = 0; i < rings[r].size(); ++i) {
       edges.emplace_back(rings[r][i], rings[r][(i + 1) % rings[r].size()]);
       box.add(rings[r][i]);
     }
@@ -187,6 +187,7 @@ Result<BridgedPath> bridge_holes(const Polygon& shape) {
   }
 
   for (const auto& [v, w] : cuts) g.add_chord(v, w);
+  g.freeze();
   std::vector<std::vector<int>> faces;
   if (!g.faces(faces) || faces.size() != 1) {
     return Error{"", fmt::format("joining the holes left {} paths instead of one", faces.size())};

@@ -5,62 +5,89 @@
 #include "geometry/polygon/exact.h"
 
 namespace tranche::geo {
-
-int PlanarGraph::vertex_id(const Point& p) {
-  auto [it, inserted] = ids_.try_emplace(p, static_cast<int>(points_.size()));
-  if (inserted) {
-    points_.push_back(p);
-    spokes_.emplace_back();
-    out_.emplace_back();
-    in_.emplace_back();
+PlanarGraph::PlanarGraph(const Rings& rings, const FillDirection* sweep) {
+  if (sweep) sweep_ = *sweep;
+  // One sort of all points gives the vertex ids: equal keys are the same point.
+  size_t n = 0;
+  for (const Ring& r : rings) n += r.size();
+  std::vector<std::pair<Key, uint32_t>> all;
+  all.reserve(n);
+  for (const Ring& r : rings) {
+    for (const Point& p : r) all.emplace_back(key(p), static_cast<uint32_t>(all.size()));
   }
-  return it->second;
+  std::sort(all.begin(), all.end());
+  std::vector<int> id(n);
+  points_.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0 || all[i].first != all[i - 1].first) points_.push_back(Point());
+    id[all[i].second] = static_cast<int>(points_.size()) - 1;
+  }
+  size_t k = 0;
+  for (const Ring& r : rings) {
+    for (const Point& p : r) points_[id[k++]] = p;
+  }
+  half_edges_.reserve(n);
+  k = 0;
+  for (const Ring& ring : rings) {
+    std::vector<int> ids;
+    ids.reserve(ring.size());
+    for (size_t i = 0; i < ring.size(); ++i) {
+      const int v = id[k++];
+      if (ids.empty() || ids.back() != v) ids.push_back(v);
+    }
+    while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
+    if (ids.size() >= 2) {
+      for (size_t i = 0; i < ids.size(); ++i) {
+        half_edges_.push_back({ids[i], ids[(i + 1) % ids.size()], EdgeKind::Real, -1, false});
+      }
+    }
+    rings_.push_back(std::move(ids));
+  }
+  freeze();
 }
 
 int PlanarGraph::find_vertex(const Point& p) const {
-  auto it = ids_.find(p);
-  return it == ids_.end() ? -1 : it->second;
-}
-
-void PlanarGraph::add_spoke(int v, Spoke s) {
-  auto& sp = spokes_[v];
-  const Point& o = points_[v];
-  const Point& q = points_[s.other];
-  auto pos = std::upper_bound(sp.begin(), sp.end(), q, [&](const Point& a, const Spoke& b) {
-    return exact::angle_less(o, a, points_[b.other]);
-  });
-  sp.insert(pos, s);
-}
-
-void PlanarGraph::add_ring(const Ring& ring) {
-  std::vector<int> ids;
-  ids.reserve(ring.size());
-  for (const Point& p : ring) {
-    const int v = vertex_id(p);
-    if (ids.empty() || ids.back() != v) ids.push_back(v);
-  }
-  while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
-  if (ids.size() < 2) return;
-  for (size_t i = 0; i < ids.size(); ++i) {
-    const int u = ids[i], v = ids[(i + 1) % ids.size()];
-    const int h = static_cast<int>(half_edges_.size());
-    half_edges_.push_back({u, v, EdgeKind::Real, -1, false});
-    add_spoke(u, {v, h, true});
-    add_spoke(v, {u, h, false});
-    out_[u].push_back(h);
-    in_[v].push_back(h);
-  }
+  const Key k = key(p);
+  auto it = std::lower_bound(points_.begin(), points_.end(), k,
+                             [&](const Point& a, const Key& b) { return key(a) < b; });
+  return it != points_.end() && *it == p ? static_cast<int>(it - points_.begin()) : -1;
 }
 
 int PlanarGraph::add_chord(int u, int v) {
   const int h = static_cast<int>(half_edges_.size());
   half_edges_.push_back({u, v, EdgeKind::Artificial, h + 1, false});
   half_edges_.push_back({v, u, EdgeKind::Artificial, h, false});
-  add_spoke(u, {v, h, true});
-  add_spoke(v, {u, h, false});
-  add_spoke(v, {u, h + 1, true});
-  add_spoke(u, {v, h + 1, false});
   return h;
+}
+
+void PlanarGraph::freeze() {
+  const int nv = vertex_count();
+  first_.assign(nv + 1, 0);
+  for (const HalfEdge& e : half_edges_) {
+    ++first_[e.from + 1];
+    ++first_[e.to + 1];
+  }
+  for (int v = 0; v < nv; ++v) first_[v + 1] += first_[v];
+  spokes_.resize(first_[nv]);
+  std::vector<int> fill(first_.begin(), first_.end() - 1);
+  for (int h = 0; h < half_edge_count(); ++h) {
+    const HalfEdge& e = half_edges_[h];
+    spokes_[fill[e.from]++] = {e.to, h, true};
+    spokes_[fill[e.to]++] = {e.from, h, false};
+  }
+  arrival_.assign(half_edges_.size(), -1);
+  for (int v = 0; v < nv; ++v) {
+    const Point& o = points_[v];
+    auto b = spokes_.begin() + first_[v], e = spokes_.begin() + first_[v + 1];
+    if (e - b > 2) {
+      std::sort(b, e, [&](const Spoke& x, const Spoke& y) {
+        return exact::angle_less(o, points_[x.other], points_[y.other]);
+      });
+    }
+    for (int i = first_[v]; i < first_[v + 1]; ++i) {
+      if (!spokes_[i].out) arrival_[spokes_[i].he] = i;
+    }
+  }
 }
 
 void PlanarGraph::set_removed(int chord, bool removed) {
@@ -70,16 +97,12 @@ void PlanarGraph::set_removed(int chord, bool removed) {
 
 int PlanarGraph::next(int h) const {
   const HalfEdge& e = half_edges_[h];
-  const auto& sp = spokes_[e.to];
-  const int n = static_cast<int>(sp.size());
-  int at = -1;
-  for (int i = 0; i < n; ++i) {
-    if (sp[i].he == h && !sp[i].out) at = i;
-  }
+  const int at = arrival_[h];
   if (at < 0) return -1;
-  // Clockwise from the direction back to e.from: the first outgoing edge is the tightest left turn.
+  const int b = first_[e.to], n = first_[e.to + 1] - b;
+  // Clockwise from the direction back to e.from: the first edge leaving is the tightest left turn.
   for (int k = 1; k < n; ++k) {
-    const Spoke& s = sp[(at - k + n) % n];
+    const Spoke& s = spokes_[b + (at - b - k + n) % n];
     if (!s.out || half_edges_[s.he].removed || s.other == e.from) continue;
     return s.he;
   }
@@ -113,9 +136,9 @@ bool PlanarGraph::faces(std::vector<std::vector<int>>& out) const {
 }
 
 bool PlanarGraph::boundary_alternates() const {
-  for (const auto& sp : spokes_) {
+  for (int v = 0; v < vertex_count(); ++v) {
     int last = -1, first = -1;
-    for (const Spoke& s : sp) {
+    for (const Spoke& s : spokes(v)) {
       if (half_edges_[s.he].kind != EdgeKind::Real) continue;
       if (s.out == last) return false;
       if (first < 0) first = s.out;
@@ -129,23 +152,20 @@ bool PlanarGraph::boundary_alternates() const {
 bool PlanarGraph::points_into_material(int v, const Point& q) const {
   const Point& o = points_[v];
   if (q == o) return false;
-  const auto& sp = spokes_[v];
-  // Last boundary spoke at or clockwise of q's direction.
-  int best = -1;
-  for (int i = 0; i < static_cast<int>(sp.size()); ++i) {
-    if (half_edges_[sp[i].he].kind != EdgeKind::Real) continue;
-    const Point& d = points_[sp[i].other];
-    if (exact::orientation(o, d, q) == 0 && exact::angle_less(o, d, q) == exact::angle_less(o, q, d)) {
+  // The nearest boundary spoke clockwise of q's direction must leave v (material on its left).
+  const Spoke* best = nullptr;
+  const Spoke* last = nullptr;
+  for (const Spoke& s : spokes(v)) {
+    if (half_edges_[s.he].kind != EdgeKind::Real) continue;
+    const Point& d = points_[s.other];
+    if (exact::orientation(o, d, q) == 0 && !exact::angle_less(o, d, q) && !exact::angle_less(o, q, d)) {
       return false;  // same direction as an edge
     }
-    if (exact::angle_less(o, d, q)) best = i;
+    if (exact::angle_less(o, d, q)) best = &s;
+    last = &s;
   }
-  if (best < 0) {  // wrap around: the last boundary spoke overall
-    for (int i = static_cast<int>(sp.size()) - 1; i >= 0 && best < 0; --i) {
-      if (half_edges_[sp[i].he].kind == EdgeKind::Real) best = i;
-    }
-  }
-  return best >= 0 && sp[best].out;
+  if (best == nullptr) best = last;  // wrap around
+  return best != nullptr && best->out;
 }
 
 }  // namespace tranche::geo

@@ -1,15 +1,18 @@
 // Boundary edges (material on their left) plus chords (cuts through material, one half-edge each
-// way) as a planar graph, and the faces they bound. Coincident points share one vertex, so rings
-// that touch at a point are handled at that point: walking a face, each arrival turns as tightly
-// as possible to the left, which keeps regions that meet only at a point apart.
+// way) as a planar graph, and the faces they bound: the regions of material between them.
+// Coincident points share one vertex, so rings that touch at a point are handled at that point:
+// walking a face, each arrival turns as tightly as possible to the left, which keeps regions that
+// meet only at a point apart.
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "geometry/core/geom.h"
 #include "geometry/core/layer.h"
+#include "geometry/polygon/monotone.h"
 
 namespace tranche::geo {
 
@@ -21,13 +24,24 @@ class PlanarGraph {
     int twin = -1;  // chords only
     bool removed = false;
   };
+  // An edge end at a vertex, kept in counter-clockwise order of direction around the vertex.
+  struct Spoke {
+    int other;  // the vertex at the far end
+    int he;     // half-edge id
+    bool out;   // the half-edge leaves this vertex
+  };
 
-  // Adds the edges of a closed ring (last point != first); consecutive duplicates are skipped.
-  // Preconditions for the faces to be meaningful: no two edges cross or overlap and no vertex
-  // lies inside another edge (resolve.h guarantees this for islands).
-  void add_ring(const Ring& ring);
-  // Adds a chord between two vertices; returns the half-edge u -> v (its twin is v -> u).
+  // The edges of closed rings (last point != first; consecutive duplicates are skipped). For the
+  // faces to mean anything no two edges may cross or overlap and no vertex may lie inside another
+  // edge (resolve.h guarantees this for islands). Vertex ids follow the sweep order of `sweep`
+  // when given (vertex 0 is swept first), else the (x, y) order.
+  explicit PlanarGraph(const Rings& rings, const FillDirection* sweep = nullptr);
+  PlanarGraph() = default;
+
+  // Adds a chord between two vertices; returns the half-edge u -> v (its twin is v -> u). Chords
+  // take part in the walks once freeze() has run again.
   int add_chord(int u, int v);
+  void freeze();                              // orders the spokes; needed after add_chord
   void set_removed(int chord, bool removed);  // a chord half-edge and its twin
 
   int vertex_count() const { return static_cast<int>(points_.size()); }
@@ -35,9 +49,11 @@ class PlanarGraph {
   const Point& point(int v) const { return points_[v]; }
   const HalfEdge& half_edge(int h) const { return half_edges_[h]; }
   int half_edge_count() const { return static_cast<int>(half_edges_.size()); }
-  // Boundary half-edges leaving (out) or entering (in) vertex v.
-  const std::vector<int>& boundary_out(int v) const { return out_[v]; }
-  const std::vector<int>& boundary_in(int v) const { return in_[v]; }
+  std::span<const Spoke> spokes(int v) const {
+    return {spokes_.data() + first_[v], static_cast<size_t>(first_[v + 1] - first_[v])};
+  }
+  // Vertex ids of each ring given to the constructor, in ring order (duplicates skipped).
+  const std::vector<std::vector<int>>& ring_vertices() const { return rings_; }
 
   // The half-edge that follows h along its face (-1 if the graph is inconsistent there).
   int next(int h) const;
@@ -53,24 +69,15 @@ class PlanarGraph {
   bool points_into_material(int v, const Point& q) const;
 
  private:
-  struct Spoke {
-    int other;  // the vertex at the far end
-    int he;     // half-edge id
-    bool out;   // leaves this vertex
-  };
-  int vertex_id(const Point& p);
-  void add_spoke(int v, Spoke s);
-
-  struct PointHash {
-    size_t operator()(const Point& p) const {
-      return std::hash<int64_t>()(p.X * 0x9E3779B97F4A7C15ULL ^ static_cast<uint64_t>(p.Y));
-    }
-  };
-  std::vector<Point> points_;
-  std::unordered_map<Point, int, PointHash> ids_;
+  using Key = std::pair<int64_t, int64_t>;
+  Key key(const Point& p) const { return sweep_ ? Key{-sweep_->across(p), sweep_->along(p)} : Key{p.X, p.Y}; }
+  std::optional<FillDirection> sweep_;
+  std::vector<Point> points_;  // ascending key: find_vertex is a binary search
   std::vector<HalfEdge> half_edges_;
-  std::vector<std::vector<Spoke>> spokes_;  // per vertex, counter-clockwise by direction
-  std::vector<std::vector<int>> out_, in_;
+  std::vector<std::vector<int>> rings_;
+  std::vector<int> first_;  // spokes of vertex v: spokes_[first_[v] .. first_[v + 1])
+  std::vector<Spoke> spokes_;
+  std::vector<int> arrival_;  // index in spokes_ of each half-edge's end at its `to` vertex
 };
 
 }  // namespace tranche::geo

@@ -248,8 +248,7 @@ Status clean_union(Rings rings, PlanarGraph& graph) {
     }
     split_at_touching_vertices(kept);
     if (!has_crossings(kept)) {
-      graph = PlanarGraph();
-      for (const Ring& r : kept) graph.add_ring(r);
+      graph = PlanarGraph(kept);
       if (graph.boundary_alternates()) return ok_status();
     }
     if (attempt == 3) return Error{"", "polygon union left crossing edges, even after snap rounding"};
@@ -276,6 +275,18 @@ void split_walk(const std::vector<int>& walk, std::vector<std::vector<int>>& loo
     stack.resize(j + 1);
   }
   loops.push_back(std::move(stack));
+}
+
+void finish_islands(std::vector<Island>& islands) {
+  for (Island& is : islands) {
+    std::sort(is.shape.holes.begin(), is.shape.holes.end(),
+              [](const Ring& a, const Ring& b) { return anchor(a) < anchor(b); });
+    exact::i128 a2 = exact::area2(is.shape.outer);
+    for (const Ring& h : is.shape.holes) a2 += exact::area2(h);
+    is.area_mm2 = static_cast<double>(a2) * 0.5 * kMmPerUnit * kMmPerUnit;
+  }
+  std::sort(islands.begin(), islands.end(),
+            [](const Island& a, const Island& b) { return anchor(a.shape.outer) < anchor(b.shape.outer); });
 }
 
 Result<std::vector<Island>> islands_from_union(Rings rings) {
@@ -319,30 +330,26 @@ Result<std::vector<Island>> islands_from_union(Rings rings) {
     if (owner == outers.size()) return Error{"", "a hole lies outside every outline after union"};
     islands[owner].shape.holes.push_back(std::move(h));
   }
-  for (size_t i = 0; i < outers.size(); ++i) {
-    Island& is = islands[i];
-    is.shape.outer = std::move(outers[i]);
-    std::sort(is.shape.holes.begin(), is.shape.holes.end(),
-              [](const Ring& a, const Ring& b) { return anchor(a) < anchor(b); });
-    exact::i128 a2 = exact::area2(is.shape.outer);
-    for (const Ring& h : is.shape.holes) a2 += exact::area2(h);
-    is.area_mm2 = static_cast<double>(a2) * 0.5 * kMmPerUnit * kMmPerUnit;
-  }
-  std::sort(islands.begin(), islands.end(),
-            [](const Island& a, const Island& b) { return anchor(a.shape.outer) < anchor(b.shape.outer); });
+  for (size_t i = 0; i < outers.size(); ++i) islands[i].shape.outer = std::move(outers[i]);
+  finish_islands(islands);
   return islands;
 }
 
-}  // namespace
+// What the coherence check learns, reused by the resolution.
+struct Checked {
+  Rings valid;                        // loops with 3+ distinct points, enclosing area
+  std::vector<EdgeContact> contacts;  // between the valid loops' edges
+  bool spikes = false;
+};
 
-Status check_loops(const Rings& loops, const ResolveOptions& options, Report& report,
-                   std::span<const uint8_t> repaired) {
+Status check(const Rings& loops, const ResolveOptions& options, Report& report,
+             std::span<const uint8_t> repaired, Checked& out) {
   std::vector<Warning> found;
   auto problem = [&](const char* code, const Point& at, std::string message) {
     found.push_back({where(options.layer_index, at), std::move(message), code});
     return !options.strict;
   };
-  Rings valid;
+  Rings& valid = out.valid;
   std::vector<size_t> valid_index;
   for (size_t i = 0; i < loops.size() && (found.empty() || !options.strict); ++i) {
     const Ring r = without_repeats(loops[i]);
@@ -362,6 +369,7 @@ Status check_loops(const Rings& loops, const ResolveOptions& options, Report& re
       const Point& p = r[(k + r.size() - 1) % r.size()];
       const Point& q = r[(k + 1) % r.size()];
       if (turns_back(p, r[k], q)) {
+        out.spikes = true;
         problem("loop-spike", r[k],
                 fmt::format("loop {} runs back over itself (zero-width spike); removed", i));
         break;
@@ -373,7 +381,8 @@ Status check_loops(const Rings& loops, const ResolveOptions& options, Report& re
   if (found.empty() || !options.strict) {
     size_t crossings = 0;
     EdgeContact first;
-    for (const EdgeContact& c : find_contacts(valid)) {
+    out.contacts = find_contacts(valid);
+    for (const EdgeContact& c : out.contacts) {
       if (c.kind != exact::Contact::Cross) continue;
       if (crossings++ == 0) first = c;
     }
@@ -395,6 +404,67 @@ Status check_loops(const Rings& loops, const ResolveOptions& options, Report& re
   return ok_status();
 }
 
+// Islands of loops that are simple and pairwise disjoint (no contacts at all: the usual layer of
+// one watertight mesh), exactly and without a boolean operation: each loop's parent is the
+// smallest loop around it, the winding number inside a loop is its parent's plus its own turn,
+// and a loop is a boundary where the overlap rule differs on its two sides.
+std::vector<Island> islands_from_disjoint(const Rings& loops, OverlapMode mode) {
+  const size_t n = loops.size();
+  std::vector<exact::i128> area(n);
+  std::vector<BBox2> box(n);
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) {
+    area[i] = exact::area2(loops[i]);
+    box[i] = bbox(loops[i]);
+    order[i] = i;
+  }
+  auto mag = [&](size_t i) { return area[i] < 0 ? -area[i] : area[i]; };
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return mag(a) > mag(b); });
+  auto material = [&](int w) { return mode == OverlapMode::Boolean ? (w % 2 != 0) : w != 0; };
+  std::vector<int> parent(n, -1), inside(n, 0), boundary_above(n, -1);
+  std::vector<char> boundary(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = order[k];
+    const Point v(loops[i][0].X * 2, loops[i][0].Y * 2);
+    for (size_t m = k; m-- > 0;) {  // smaller candidates first: the first hit is the parent
+      const size_t j = order[m];
+      if (bbox_inside(box[i], box[j]) && winding(loops[j], v) != 0) {
+        parent[i] = static_cast<int>(j);
+        break;
+      }
+    }
+    const int outside = parent[i] < 0 ? 0 : inside[parent[i]];
+    inside[i] = outside + (area[i] > 0 ? 1 : -1);
+    boundary[i] = material(inside[i]) != material(outside);
+    // The nearest boundary loop around this one (its island's outline when this is a hole).
+    if (parent[i] >= 0) boundary_above[i] = boundary[parent[i]] ? parent[i] : boundary_above[parent[i]];
+  }
+  std::vector<int> island_of(n, -1);
+  std::vector<Island> islands;
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = order[k];
+    if (!boundary[i] || !material(inside[i])) continue;
+    island_of[i] = static_cast<int>(islands.size());
+    Island is;
+    is.shape.outer = area[i] > 0 ? loops[i] : Ring(loops[i].rbegin(), loops[i].rend());
+    islands.push_back(std::move(is));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!boundary[i] || material(inside[i]) || boundary_above[i] < 0) continue;
+    islands[island_of[boundary_above[i]]].shape.holes.push_back(
+        area[i] < 0 ? loops[i] : Ring(loops[i].rbegin(), loops[i].rend()));
+  }
+  return islands;
+}
+
+}  // namespace
+
+Status check_loops(const Rings& loops, const ResolveOptions& options, Report& report,
+                   std::span<const uint8_t> repaired) {
+  Checked c;
+  return check(loops, options, report, repaired, c);
+}
+
 Result<std::vector<Island>> strict_islands(const Rings& rings, OverlapMode mode) {
   if (!in_range(rings)) return range_error();
   Rings input;
@@ -414,8 +484,13 @@ Result<std::vector<Island>> resolve_islands(const Rings& loops, const ResolveOpt
     if (options.layer_index >= 0) e.where = fmt::format("layer {}", options.layer_index);
     return e;
   }
-  Status checked = check_loops(loops, options, report, repaired);
-  if (!checked) return checked.error();
+  Checked checked;
+  if (Status st = check(loops, options, report, repaired, checked); !st) return st.error();
+  if (checked.contacts.empty() && !checked.spikes) {
+    std::vector<Island> fast = islands_from_disjoint(checked.valid, options.overlap);
+    finish_islands(fast);
+    return fast;
+  }
   auto islands = strict_islands(loops, options.overlap);
   if (!islands && options.layer_index >= 0) {
     return Error{fmt::format("layer {}", options.layer_index), islands.error().message};

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <random>
+
 #include "geometry/polygon/exact.h"
 
 using namespace tranche::geo;
@@ -42,4 +44,18 @@ TEST_CASE("exact: angular order around a point starts at +x") {
 TEST_CASE("exact: doubled area") {
   CHECK(exact::area2({{0, 0}, {10, 0}, {10, 10}, {0, 10}}) == 200);
   CHECK(exact::area2({{0, 0}, {0, 10}, {10, 10}, {10, 0}}) == -200);
+}
+
+TEST_CASE("exact: the integer orientation agrees with CGAL's, degenerate cases included") {
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<coord_t> big(-(coord_t{1} << 31), coord_t{1} << 31), small(-3, 3);
+  for (int i = 0; i < 20000; ++i) {
+    const bool degenerate = i % 2 == 0;  // small grids: many collinear and repeated points
+    auto pick = [&] {
+      return degenerate ? Point(small(rng) * 1000003, small(rng) * 999983) : Point(big(rng), big(rng));
+    };
+    Point a = pick(), b = pick(), c = pick();
+    if (i % 7 == 0) c = Point(a.X + 2 * (b.X - a.X), a.Y + 2 * (b.Y - a.Y));  // exactly collinear
+    CHECK(exact::orientation(a, b, c) == exact::orientation_cgal(a, b, c));
+  }
 }

@@ -80,4 +80,22 @@ inline Rings scribbles(Rng& rng, coord_t grid) {
   return out;
 }
 
+// Disjoint nested loops (rings of stars around a few centres) with random orientations: inside-out
+// shells and same-direction nesting, which the overlap rule decides.
+inline Rings nested(Rng& rng) {
+  Rings out;
+  for (int g = pick(rng, 1, 3); g > 0; --g) {
+    const double cx = uniform(rng, -60e6, 60e6), cy = uniform(rng, -60e6, 60e6);
+    double r = uniform(rng, 1e6, 3e6);
+    for (int k = pick(rng, 1, 5); k > 0; --k) {
+      const double r0 = r, r1 = r + uniform(rng, 0.5e6, 3e6);
+      Ring ring = test::star(rng, cx, cy, r0, r1, pick(rng, 3, 30));
+      if (pick(rng, 0, 1)) ring = test::reversed(ring);
+      out.push_back(std::move(ring));
+      r = r1 + uniform(rng, 0.2e6, 2e6);
+    }
+  }
+  return out;
+}
+
 }  // namespace tranche::test::gen

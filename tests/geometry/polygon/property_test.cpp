@@ -130,6 +130,29 @@ TEST_CASE("property: unions of circles") {
       "circles-xor", 300, 33, [](Rng& rng) { return circles(rng, 1); }, OverlapMode::Boolean);
 }
 
+TEST_CASE("property: nested disjoint loops, fast path against the union path") {
+  run_family("nested", 400, 51, nested);
+  run_family("nested-xor", 400, 52, nested, OverlapMode::Boolean);
+  Rng rng(53);
+  for (int i = 0; i < 400; ++i) {
+    const Rings loops = nested(rng);
+    for (OverlapMode mode : {OverlapMode::Additive, OverlapMode::Boolean}) {
+      Report rep;
+      ResolveOptions o;
+      o.overlap = mode;
+      auto fast = resolve_islands(loops, o, rep);  // no contacts: decided without Clipper
+      auto slow = strict_islands(loops, mode);
+      REQUIRE(fast.ok());
+      REQUIRE(slow.ok());
+      REQUIRE(fast->size() == slow->size());
+      for (size_t k = 0; k < fast->size(); ++k) {
+        CHECK(test::island_area2((*fast)[k]) == test::island_area2((*slow)[k]));
+        CHECK((*fast)[k].shape.holes.size() == (*slow)[k].shape.holes.size());
+      }
+    }
+  }
+}
+
 TEST_CASE("property: self-intersecting scribbles") {
   run_family("scribbles", 600, 41, [](Rng& rng) { return scribbles(rng, 1000000); });
   run_family(
