@@ -2,6 +2,7 @@
 // with code generation.
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "compiler/ast/ast.h"
+#include "compiler/check.h"
 #include "compiler/diagnostics.h"
 #include "compiler/frontend.h"
 
@@ -29,6 +31,7 @@ constexpr const char* kUsage =
     "  --allow CODE           do not report warning CODE (e.g. --allow W201)\n"
     "  --color auto|always|never\n"
     "  --dump-ast             print the checked AST (for developers)\n"
+    "  --time                 print the time of each phase on stderr\n"
     "  -h, --help             this text\n"
     "\n"
     "Diagnostic codes are explained in docs/diagnostics.md.\n";
@@ -46,7 +49,7 @@ int check(int argc, char** argv) {
   std::vector<std::string> files;
   std::vector<std::pair<std::string, std::string>> sets;
   std::string format = "text", color = "auto";
-  bool dump = false;
+  bool dump = false, timing = false;
   for (int i = 2; i < argc; ++i) {
     std::string_view a = argv[i];
     auto value = [&](std::string_view flag) -> const char* {
@@ -91,6 +94,8 @@ int check(int argc, char** argv) {
       color = c;
     } else if (a == "--dump-ast") {
       dump = true;
+    } else if (a == "--time") {
+      timing = true;
     } else if (a.starts_with("-") && a != "-") {
       return usage_error(std::string("unknown option `").append(a).append("`"));
     } else {
@@ -99,8 +104,24 @@ int check(int argc, char** argv) {
   }
   if (files.empty()) return usage_error("no input files");
 
+  // The phases of compiler::compile(), timed one by one for --time.
   diag::Sink sink;
-  ast::Program program = compiler::compile(files, sets, options, sink);
+  ast::Program program;
+  using Clock = std::chrono::steady_clock;
+  std::vector<std::pair<const char*, double>> times;
+  auto t0 = Clock::now();
+  auto lap = [&](const char* phase) {
+    auto t = Clock::now();
+    times.emplace_back(phase, std::chrono::duration<double, std::milli>(t - t0).count());
+    t0 = t;
+  };
+  for (const auto& f : files) compiler::load_file(program, f, options, sink);
+  for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
+  lap("read and parse");
+  bool ok = compiler::check(program, sink) && !sink.has_errors();
+  lap("check");
+  if (ok) compiler::lint(program, sink);
+  lap("lint");
   sink.finish(policy);
 
   bool use_color =
@@ -113,7 +134,10 @@ int check(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", compiler::render_text(program.sources, d, use_color).c_str());
     }
   }
+  lap("report");
   if (dump && program.checked) std::fputs(ast::dump(program).c_str(), stdout);
+  if (timing)
+    for (const auto& [phase, ms] : times) std::fprintf(stderr, "rulec: %-15s %8.1f ms\n", phase, ms);
   if (format == "text") {
     std::fprintf(stderr, "rulec: %zu rule%s checked: %s\n", program.cascade.size(),
                  program.cascade.size() == 1 ? "" : "s",

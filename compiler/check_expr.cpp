@@ -120,6 +120,8 @@ Type Checker::number(Expr& e) {
     } else if (u == "K" || u == "F") {
       d.help("temperatures are written in degrees Celsius: `°C` or `C`");
     } else if (auto best = suggest(u, all)) {
+      // `mms`, `mmps`: a speed is more likely than a length.
+      if (*best == "mm" && u.size() > 2 && u.find('s', 2) != std::string::npos) *best = "mm/s";
       d.help(fmt::format("did you mean `{}`?", *best));
     }
     d.note("units: mm, mm2, mm3, mm/s, mm/s2, mm3/s, deg (or °), s, °C (or C), %");

@@ -210,9 +210,10 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
       ast::Unit gu = got.kind == Kind::Number ? got.unit : ast::Unit{};
       bool zero = value.constant == 0.0;
       if (gu != want.unit && !(gu.plain() && zero)) {
-        auto& d =
-            fail("E0202", fmt::format("`{}` needs {}, found {}", target, want.describe(), got.describe()),
-                 gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
+        auto& d = fail("E0202",
+                       fmt::format("`{}` needs {}, found {}", target, want.describe(),
+                                   got.kind == Kind::Int ? std::string("a plain number") : got.describe()),
+                       gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
         if (gu.plain() && value.kind == ast::ExprKind::Number)
           d.help(fmt::format("write `{} {}`", sources_.text(value.span), want.unit.name()));
         else if (want.unit.plain())

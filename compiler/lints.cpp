@@ -6,6 +6,8 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
+#include <span>
 
 #include "compiler/check.h"
 #include "compiler/checker.h"
@@ -153,10 +155,24 @@ void lint(const ast::Program& program, diag::Sink& sink) {
 
   // Per-file duplicate rule names (W211).
   std::map<std::pair<uint32_t, std::string>, const Rule*> names;
-  // Slots: for each slot key, the rules that set it, in cascade order.
+  // Slots: for each slot key, the rules that set it in cascade order, and the ones that can
+  // take it from an earlier rule (known filter, whole slot), latest first.
   std::map<uint32_t, std::vector<size_t>> by_slot;
+  struct Takers {
+    std::vector<size_t> rules;                  // descending cascade index
+    std::vector<const prover::Boxes*> filters;  // parallel
+  };
+  std::map<uint32_t, Takers> takers;
   for (size_t i = 0; i < rules.size(); ++i)
     for (const auto& s : rules[i]->slots) by_slot[s.key()].push_back(i);
+  for (size_t i = rules.size(); i-- > 0;) {
+    std::set<uint32_t> seen;
+    for (const auto& s : rules[i]->slots) {
+      if (!seen.insert(s.key()).second || !facts[i].boxes || rules[i]->from_set || !takes_slot(s)) continue;
+      takers[s.key()].rules.push_back(i);
+      takers[s.key()].filters.push_back(&*facts[i].boxes);
+    }
+  }
 
   for (size_t i = 0; i < rules.size(); ++i) {
     const Rule& r = *rules[i];
@@ -208,28 +224,23 @@ void lint(const ast::Program& program, diag::Sink& sink) {
     std::vector<size_t> shadowers;
     bool shadowed = true;
     for (const auto& slot : r.slots) {
-      std::vector<const prover::Boxes*> cover;
-      std::vector<size_t> owners;
-      for (size_t j : by_slot[slot.key()]) {
-        if (j <= i || !facts[j].boxes || rules[j]->from_set) continue;
-        for (const auto& s : rules[j]->slots)
-          if (s.key() == slot.key() && takes_slot(s)) {
-            cover.push_back(&*facts[j].boxes);
-            owners.push_back(j);
-            break;
-          }
-      }
-      if (cover.empty()) {
+      // Latest first: a rule that still finds part of the region uncovered is the one that wins
+      // there, so the rules named are exactly those that take the slot from this one.
+      const Takers& t = takers[slot.key()];
+      size_t later = static_cast<size_t>(
+          std::partition_point(t.rules.begin(), t.rules.end(), [&](size_t j) { return j > i; }) -
+          t.rules.begin());
+      if (later == 0) {
         shadowed = false;
         break;
       }
       std::vector<size_t> used;
-      auto proof = prover::covered(*facts[i].boxes, cover, space, &used);
+      auto proof = prover::covered(*facts[i].boxes, std::span(t.filters.data(), later), space, &used);
       if (!proof || !*proof) {
         shadowed = false;
         break;
       }
-      for (size_t u : used) shadowers.push_back(owners[u]);
+      for (size_t u : used) shadowers.push_back(t.rules[u]);
     }
     if (!shadowed) continue;
     std::sort(shadowers.begin(), shadowers.end());

@@ -381,8 +381,26 @@ std::optional<Box> intersect(const Box& a, const Box& b, const Space& space) {
   return out;
 }
 
+// Whether a ∩ b is non-empty, without building it.
+bool overlaps(const Box& a, const Box& b, const Space& space) {
+  size_t i = 0, j = 0;
+  while (i < a.cons.size() && j < b.cons.size()) {
+    if (a.cons[i].var < b.cons[j].var) {
+      ++i;
+    } else if (b.cons[j].var < a.cons[i].var) {
+      ++j;
+    } else {
+      const Var& v = space.var(a.cons[i].var);
+      if (empty(meet(a.cons[i], b.cons[j], v), v)) return false;
+      ++i;
+      ++j;
+    }
+  }
+  return true;
+}
+
 Boxes subtract(const Box& a, const Box& b, const Space& space) {
-  if (!intersect(a, b, space)) return {a};
+  if (!overlaps(a, b, space)) return {a};
   Boxes out;
   Box rest = a;
   for (const Cons& cb : b.cons) {
@@ -423,15 +441,17 @@ Boxes subtract(const Box& a, const Box& b, const Space& space) {
   return out;
 }
 
-std::optional<bool> covered(const Boxes& region, const std::vector<const Boxes*>& cover, const Space& space,
+std::optional<bool> covered(const Boxes& region, std::span<const Boxes* const> cover, const Space& space,
                             std::vector<size_t>* used, size_t limit) {
   Boxes rest = region;
   for (size_t i = 0; i < cover.size() && !rest.empty(); ++i) {
     bool touched = false;
     for (const Box& b : *cover[i]) {
       Boxes next;
+      if (std::none_of(rest.begin(), rest.end(), [&](const Box& r) { return overlaps(r, b, space); }))
+        continue;
       for (const Box& r : rest) {
-        if (!intersect(r, b, space)) {
+        if (!overlaps(r, b, space)) {
           next.push_back(r);
           continue;
         }

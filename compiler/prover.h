@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -73,7 +74,7 @@ Boxes subtract(const Box& a, const Box& b, const Space& space);
 
 // Whether every point of `region` lies in the union of `cover` (tried in order). `used` gets
 // the indices of the cover entries that took part. Nothing if the proof grows past `limit` boxes.
-std::optional<bool> covered(const Boxes& region, const std::vector<const Boxes*>& cover, const Space& space,
+std::optional<bool> covered(const Boxes& region, std::span<const Boxes* const> cover, const Space& space,
                             std::vector<size_t>* used, size_t limit = 4096);
 
 }  // namespace tranche::compiler::prover

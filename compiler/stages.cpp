@@ -30,7 +30,7 @@ std::string decided_at(Stage s) {
     case Stage::Path:
       return "decided per path, once its geometry is built";
     case Stage::Piece:
-      return "decided per piece (straight move), before the layer's print time is estimated";
+      return "decided per straight move, before the layer's print time is estimated";
     case Stage::Cooling:
       return "decided once the layer's print time is estimated";
   }

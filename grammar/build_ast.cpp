@@ -74,16 +74,12 @@ antlrcpp::Any AstBuilder::visitNotExpr(RulesParser::NotExprContext* ctx) {
 }
 
 namespace {
-// The left operand of a left-recursive alternative, or null for other contexts.
+// The left operand of a left-recursive alternative (binary, `in`), or null for other contexts:
+// only those alternatives start with an expression (prefix ones start with a token, `primary`
+// with a primary).
 RulesParser::ExprContext* left_operand(RulesParser::ExprContext* ctx) {
-  if (auto* c1 = dynamic_cast<RulesParser::MulExprContext*>(ctx)) return c1->expr(0);
-  if (auto* c2 = dynamic_cast<RulesParser::AddExprContext*>(ctx)) return c2->expr(0);
-  if (auto* c3 = dynamic_cast<RulesParser::CmpExprContext*>(ctx)) return c3->expr(0);
-  if (auto* c4 = dynamic_cast<RulesParser::AndExprContext*>(ctx)) return c4->expr(0);
-  if (auto* c5 = dynamic_cast<RulesParser::OrExprContext*>(ctx)) return c5->expr(0);
-  if (auto* c6 = dynamic_cast<RulesParser::InRangeExprContext*>(ctx)) return c6->expr(0);
-  if (auto* c7 = dynamic_cast<RulesParser::InSetExprContext*>(ctx)) return c7->expr(0);
-  return nullptr;
+  if (ctx->children.size() < 3) return nullptr;
+  return dynamic_cast<RulesParser::ExprContext*>(ctx->children[0]);
 }
 
 Op op_of(antlr4::Token* t) {

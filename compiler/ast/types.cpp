@@ -73,7 +73,9 @@ std::string Unit::name() const {
   return fmt::format("{}/{}", num.empty() ? "1" : num, den);
 }
 
-std::string Unit::quoted() const { return plain() ? std::string("no unit") : fmt::format("`{}`", name()); }
+std::string Unit::quoted() const {
+  return plain() ? std::string("a plain number") : fmt::format("`{}`", name());
+}
 
 namespace {
 struct Spelling {

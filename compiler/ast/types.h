@@ -27,7 +27,7 @@ struct Unit {
   bool in_range() const;
   // As written in rules: "mm/s", "mm2", "°C"; composites like "mm2/s", "1/s"; "" when plain.
   std::string name() const;
-  // "`mm/s`" or "no unit", for messages.
+  // "`mm/s`" or "a plain number", for messages.
   std::string quoted() const;
   auto operator<=>(const Unit&) const = default;
 

@@ -8,6 +8,7 @@ using compiler::prover::Box;
 using compiler::prover::Boxes;
 using compiler::prover::Cons;
 using compiler::prover::Space;
+using Cover = std::vector<const Boxes*>;
 
 namespace {
 
@@ -112,10 +113,10 @@ TEST_CASE("prover: a region is covered by a union, and the cover that took part 
   auto region = boxes_of(c, space, 0);
   auto low = boxes_of(c, space, 1), high = boxes_of(c, space, 2), far = boxes_of(c, space, 3);
   std::vector<size_t> used;
-  CHECK(compiler::prover::covered(*region, {&*far, &*low, &*high}, space, &used) == true);
+  CHECK(compiler::prover::covered(*region, Cover{&*far, &*low, &*high}, space, &used) == true);
   CHECK(used == std::vector<size_t>{1, 2});
-  CHECK(compiler::prover::covered(*region, {&*low}, space, nullptr) == false);
-  CHECK(compiler::prover::covered(*region, {&*far}, space, nullptr) == false);
+  CHECK(compiler::prover::covered(*region, Cover{&*low}, space, nullptr) == false);
+  CHECK(compiler::prover::covered(*region, Cover{&*far}, space, nullptr) == false);
 }
 
 TEST_CASE("prover: contradictions are empty, tautologies have an empty negation") {
@@ -148,10 +149,10 @@ TEST_CASE("prover: conditions it cannot model are opaque, shared by text, privat
   REQUIRE_FALSE(c.sink.has_errors());
   Space space;
   auto a = boxes_of(c, space, 0), b = boxes_of(c, space, 1);
-  CHECK(compiler::prover::covered(*a, {&*b}, space, nullptr) == true);
+  CHECK(compiler::prover::covered(*a, Cover{&*b}, space, nullptr) == true);
   // `speed` read in a rule that sets it is the value before that rule: not the same condition.
   auto p = boxes_of(c, space, 2), q = boxes_of(c, space, 3);
-  CHECK(compiler::prover::covered(*p, {&*q}, space, nullptr) == false);
+  CHECK(compiler::prover::covered(*p, Cover{&*q}, space, nullptr) == false);
 }
 
 TEST_CASE("prover: a normal form past its cap is unknown, never a proof") {

@@ -46,7 +46,7 @@ TEST_CASE("units: names read like the rules that write them") {
   CHECK(Unit{2, -1, 0, 0}.name() == "mm2/s");
   CHECK(Unit{1, 1, 0, 0}.name() == "mm·s");
   CHECK(Unit{}.name().empty());
-  CHECK(Unit{}.quoted() == "no unit");
+  CHECK(Unit{}.quoted() == "a plain number");
   CHECK(Unit{1, 0, 0, 0}.quoted() == "`mm`");
 }
 
