@@ -1,5 +1,9 @@
 #include "geometry/toolpath/cells.h"
 
+#include <cmath>
+
+#include "geometry/polygon/decompose.h"
+#include "geometry/polygon/monotone.h"
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::toolpath {
@@ -16,18 +20,50 @@ std::vector<geo::EdgeKind> label(const geo::Ring& ring, const EdgeGrid& border) 
 }
 }  // namespace
 
-std::vector<CellShape> make_cells(const geo::Rings& region, double /*angle_deg*/, const EdgeGrid& fill_border,
-                                  Report& /*report*/, const std::string& /*where*/) {
+std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, const EdgeGrid& fill_border,
+                                  Report& report, const std::string& where) {
   std::vector<CellShape> out;
   if (region.empty()) return out;
-  CellShape c;
-  for (const auto& r : region) {
-    c.shape.rings.push_back(r);
-    c.shape.kinds.push_back(label(r, fill_border));
+  // Strictly simple polygons with holes (rings meeting at most at shared vertices), the input
+  // decompose() expects, from one Clipper union.
+  ClipperLib::Clipper clip;
+  clip.StrictlySimple(true);
+  clip.AddPaths(region, ClipperLib::ptSubject, true);
+  ClipperLib::PolyTree tree;
+  clip.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  for (const geo::Polygon& poly : geo::to_polygons(tree)) {
+    auto cells = geo::decompose(poly, angle_deg);
+    if (!cells) {
+      // The polygon itself, filled by as many zig-zag runs as it needs (with travel between).
+      report.warn("decompose", where,
+                  "a fill region could not be cut into cells (" + cells.error().message +
+                      "); it is filled with travel moves between lines");
+      CellShape c;
+      c.shape.rings.push_back(poly.outer);
+      for (const auto& h : poly.holes) c.shape.rings.push_back(h);
+      for (const auto& r : c.shape.rings) c.shape.kinds.push_back(label(r, fill_border));
+      c.area_mm2 = geo::area_mm2(poly);
+      c.monotone = false;
+      out.push_back(std::move(c));
+      continue;
+    }
+    for (geo::Cell& cell : *cells) {
+      CellShape c;
+      c.area_mm2 = std::abs(geo::area_mm2(cell.ring));
+      c.monotone = geo::is_monotone(cell.ring, angle_deg);
+      if (!c.monotone)
+        report.warn("cell-not-monotone", where,
+                    "a fill cell is not monotone for the fill angle; its zig-zag is split where needed");
+      // The decomposition calls every edge of the region Real; only those on the island's fill
+      // border are (the others separate solid from sparse fill).
+      std::vector<geo::EdgeKind> kinds = label(cell.ring, fill_border);
+      for (size_t i = 0; i < kinds.size() && i < cell.edges.size(); ++i)
+        if (cell.edges[i] == geo::EdgeKind::Artificial) kinds[i] = geo::EdgeKind::Artificial;
+      c.shape.rings.push_back(std::move(cell.ring));
+      c.shape.kinds.push_back(std::move(kinds));
+      out.push_back(std::move(c));
+    }
   }
-  c.area_mm2 = area_mm2(region);
-  c.monotone = false;
-  out.push_back(std::move(c));
   return out;
 }
 

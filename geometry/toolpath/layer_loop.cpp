@@ -182,6 +182,8 @@ class LayerTask {
   bool per_piece_ = false, has_exec_ = false, has_repl_path_ = false, has_repl_island_ = false;
   bool need_support_ = false, need_overhang_ = false;  // costly fields, computed only when read
   Level cooling_at_ = Level::Layer;
+  // Per island (by index): each fill region's edges, to join zig-zags without leaving it.
+  std::vector<std::vector<std::pair<PathKind, EdgeGrid>>> region_grids_;
 };
 
 Status LayerTask::layer_level() {
@@ -197,6 +199,7 @@ Status LayerTask::layer_level() {
   if (Status s = decide(Stage::Layer, plan_.props); !s) return s;
 
   plan_.islands.resize(layer.islands.size());
+  region_grids_.resize(layer.islands.size());
   for (size_t i = 0; i < layer.islands.size(); ++i)
     if (Status s = island_level(layer.islands[i], static_cast<int>(i), plan_.islands[i]); !s) return s;
   if (L == 0)
@@ -321,6 +324,7 @@ Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip
 
 Status LayerTask::island_content(IslandPlan& ip) {
   ip.paths.clear();
+  region_grids_[static_cast<size_t>(ip.index)].clear();
   ip.cells.clear();
   const PropertyValues& P = ip.props;
   int count = static_cast<int>(P[PropId::Perimeters]);
@@ -397,6 +401,7 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
     }
     if (any) ip.cells.push_back(cell);
   }
+  region_grids_[static_cast<size_t>(ip.index)].emplace_back(region.kind, EdgeGrid(region.rings));
   return ok_status();
 }
 
@@ -452,9 +457,29 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
   for (const auto& p : chained)
     if (std::find(first_seen.begin(), first_seen.end(), p.cell) == first_seen.end())
       first_seen.push_back(p.cell);
+  const size_t first_fill = out.size();
   for (int c : first_seen)
     for (auto& p : chained)
       if (p.cell == c) out.push_back(std::move(p));
+  // A zig-zag that starts right next to where the previous one of the same region ended is
+  // joined to it by a short extrusion (across the cut between their cells) instead of a travel.
+  const auto& grids = region_grids_[static_cast<size_t>(ip.index)];
+  for (size_t i = first_fill + 1; i < out.size(); ++i) {
+    PathPlan& prev = out[i - 1];
+    PathPlan& p = out[i];
+    if (prev.kind != p.kind || prev.width != p.width || prev.pts.empty() || p.pts.empty()) continue;
+    const EdgeGrid* grid = nullptr;
+    for (const auto& [kind, g] : grids)
+      if (kind == p.kind) grid = &g;
+    double s = bead_spacing_mm(p.width, height_);
+    double pitch =
+        p.kind == PathKind::Infill ? s / std::max(1e-3, std::min(1.0, p.props[PropId::InfillDensity])) : s;
+    double limit = std::max(2.5 * s, 1.5 * pitch) * geo::kUnitsPerMm;
+    const geo::Point a = prev.pts.back();
+    if (!grid || dist2(a, p.pts.front()) > limit * limit || grid->crosses(a, p.pts.front())) continue;
+    p.pts.insert(p.pts.begin(), a);
+    p.border.insert(p.border.begin(), Border::Artificial);
+  }
   if (!out.empty() && !out.back().pts.empty()) pos = out.back().pts.back();
   for (size_t i = 0; i < out.size(); ++i) out[i].index = static_cast<int>(i);
   ip.paths = std::move(out);
