@@ -1,0 +1,299 @@
+// End to end: generated meshes through `tranche slice` (run_slice) to G-code, checked as a
+// printer would see it.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "gcode_reader.h"
+#include "geometry/mesh/primitives.h"
+#include "geometry/mesh/stl.h"
+#include "geometry/pipeline/slice_job.h"
+#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/simple_islands.h"
+#include "geometry/slice/slicer.h"
+#include "geometry/slice/topology.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "tests/support/fixtures.h"
+
+using namespace tranche;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Sliced {
+  test::Gcode gcode;
+  std::vector<geo::Layer> layers;  // the model's layers, for geometric checks
+  geo::Point shift;                // model units -> bed units
+};
+
+std::string write_mesh(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh) {
+  std::string path = (dir / name).string();
+  REQUIRE(geo::write_stl_binary(path, mesh).ok());
+  return path;
+}
+
+// Slices `mesh` with the given --set options into dir/NAME.gcode and re-slices the mesh the same
+// way for the geometric checks.
+Sliced slice(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
+             std::vector<std::pair<std::string, std::string>> sets = {}) {
+  pipeline::SliceOptions o;
+  o.quiet = true;
+  o.model = write_mesh(dir, name + ".stl", mesh);
+  o.output_gcode = (dir / (name + ".gcode")).string();
+  o.sets = std::move(sets);
+  Report report;
+  auto r = pipeline::run_slice(o, report);
+  REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
+  Sliced s;
+  s.gcode = test::read_gcode(o.output_gcode);
+  geo::Mesh m = mesh;
+  auto b = m.bbox();
+  m.transform(1.0, {0, 0, -b.min.z});
+  auto layers = geo::plan_layers(b.max.z - b.min.z, {});
+  REQUIRE(layers.ok());
+  Report r2;
+  REQUIRE(geo::slice_mesh(m, geo::build_topology(m), *layers, {}, r2).ok());
+  REQUIRE(geo::make_islands(*layers).ok());
+  s.layers = std::move(*layers);
+  s.shift = geo::Point(geo::to_units(100 - 0.5 * (b.min.x + b.max.x)),
+                       geo::to_units(100 - 0.5 * (b.min.y + b.max.y)));
+  return s;
+}
+
+geo::Rings material(const geo::Layer& l) {
+  geo::Rings r;
+  for (const auto& isl : l.islands) {
+    r.push_back(isl.shape.outer);
+    for (const auto& h : isl.shape.holes) r.push_back(h);
+  }
+  return r;
+}
+
+bool is_perimeter(const std::string& t) { return t == "External perimeter" || t == "Perimeter"; }
+
+}  // namespace
+
+SCENARIO("a box sliced with the defaults") {
+  test::TempDir dir("e2e-box");
+  GIVEN("a 20 × 20 × 10 mm box") {
+    auto s = slice(dir, "box", geo::box({20, 20, 10}));
+    const auto& g = s.gcode;
+    THEN("it has one layer per 0.2 mm, announced in the header, at the right heights") {
+      CHECK(g.layer_count_header == 50);
+      CHECK(g.layer_z.size() == 50);
+      CHECK(g.layer_z.at(0) == doctest::Approx(0.2));
+      CHECK(g.layer_z.at(49) == doctest::Approx(10.0));
+    }
+    THEN("absolute E only grows within a layer, except retractions that are undone before extruding") {
+      CHECK_FALSE(g.relative_e);
+      double last = -1e9;
+      int layer = -2;
+      bool retracted = false;
+      for (const auto& m : g.moves) {
+        if (!m.has_e) continue;
+        if (m.layer != layer) layer = m.layer, last = -1e9, retracted = false;
+        if (!m.has_xy) {  // retraction or unretraction
+          retracted = m.de < 0;
+          continue;
+        }
+        CHECK_FALSE(retracted);
+        CHECK(m.e >= last);
+        last = m.e;
+      }
+    }
+    THEN("every layer has its external perimeter, and the first and last layers are solid") {
+      std::set<int> with_outer;
+      for (const auto& m : g.moves)
+        if (m.has_e && m.de > 0 && m.type == "External perimeter") with_outer.insert(m.layer);
+      CHECK(with_outer.size() == 50);
+      CHECK(g.contains(";TYPE:Top solid infill"));
+      CHECK(g.contains(";TYPE:Internal infill"));
+      CHECK(g.contains(";TYPE:Skirt/Brim"));  // skirt_loops = 1 by default
+    }
+    THEN("no extrusion leaves the part (its slice grown by half a bead)") {
+      std::vector<toolpath::EdgeGrid> grids;
+      for (const auto& l : s.layers) grids.emplace_back(toolpath::offset(material(l), 0.225 + 0.01));
+      int outside = 0, checked = 0;
+      for (const auto& m : g.moves) {
+        if (!m.has_xy || m.de <= 0 || m.type == "Skirt/Brim" || m.layer < 0) continue;
+        geo::Point p = geo::to_point(m.x, m.y);
+        p.X -= s.shift.X;
+        p.Y -= s.shift.Y;
+        ++checked;
+        if (!grids[static_cast<size_t>(m.layer)].inside(p)) ++outside;
+      }
+      CHECK(checked > 1000);
+      CHECK(outside == 0);
+    }
+    THEN("the header's filament matches the moves") {
+      auto at = g.text.rfind("; filament used [mm] = ");
+      REQUIRE(at != std::string::npos);
+      CHECK(std::stod(g.text.substr(at + 23)) == doctest::Approx(g.filament()).epsilon(1e-3));
+    }
+  }
+}
+
+SCENARIO("perimeters follow real borders only") {
+  test::TempDir dir("e2e-cuts");
+  GIVEN("a plate with a grid of holes, whose fill is cut into many cells") {
+    auto s = slice(dir, "plate", geo::plate_with_holes(40, 30, 2, 4, 3, 2.5, 32), {{"skirt_loops", "0"}});
+    THEN("every perimeter move runs at one or two bead spacings from the outline or a hole") {
+      const double s1 = 0.225, s2 = 0.225 + (0.45 - 0.2 * (1 - M_PI / 4));
+      int far = 0, checked = 0;
+      for (const auto& m : s.gcode.moves) {
+        if (!m.has_xy || m.de <= 0 || !is_perimeter(m.type)) continue;
+        geo::Point mid = geo::to_point(0.5 * (m.x0 + m.x) - geo::to_mm(s.shift.X),
+                                       0.5 * (m.y0 + m.y) - geo::to_mm(s.shift.Y));
+        const auto& layer = s.layers[static_cast<size_t>(m.layer)];
+        double best = 1e9;
+        for (const auto& r : material(layer))
+          for (size_t i = 0; i < r.size(); ++i) {
+            const auto &a = r[i], &b = r[(i + 1) % r.size()];
+            double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
+            double px = geo::to_mm(mid.X), py = geo::to_mm(mid.Y);
+            double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+            double t = l2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / l2, 0.0, 1.0) : 0;
+            best = std::min(best, std::hypot(px - ax - t * dx, py - ay - t * dy));
+          }
+        ++checked;
+        bool on_loop = std::abs(best - s1) < 0.05 || std::abs(best - s2) < 0.05;
+        if (!on_loop && best > s2 + 0.12) ++far;  // corners of the second loop are rounded a little
+      }
+      CHECK(checked > 500);
+      CHECK(far == 0);
+    }
+    THEN("the fill has artificial cuts: more zig-zags than islands, yet no perimeter along them") {
+      int fills = 0;
+      for (size_t i = 1; i < s.gcode.moves.size(); ++i) {
+        const auto& a = s.gcode.moves[i - 1];
+        const auto& b = s.gcode.moves[i];
+        if (b.de > 0 && b.has_xy && (b.type == "Internal infill" || b.type == "Solid infill") &&
+            !(a.de > 0 && a.has_xy))
+          ++fills;
+      }
+      CHECK(fills > static_cast<int>(s.layers.size()));
+    }
+  }
+}
+
+SCENARIO("--set changes what it should") {
+  test::TempDir dir("e2e-set");
+  const geo::Mesh cube = geo::box({15, 15, 4});
+  auto base = slice(dir, "base", cube, {{"skirt_loops", "0"}});
+  WHEN("layer_height is 0.1 mm, with twice the solid layers") {
+    auto s =
+        slice(dir, "fine", cube,
+              {{"skirt_loops", "0"}, {"layer_height", "0.1mm"}, {"top_layers", "6"}, {"bottom_layers", "6"}});
+    THEN("there are twice the layers and about the same plastic") {
+      CHECK(s.gcode.layer_count_header == 40);
+      CHECK(s.gcode.filament() == doctest::Approx(base.gcode.filament()).epsilon(0.06));
+    }
+  }
+  WHEN("perimeters is 3") {
+    auto s = slice(dir, "p3", cube, {{"skirt_loops", "0"}, {"perimeters", "3"}});
+    THEN("each layer has three loops") {
+      auto loops = [](const test::Gcode& g, int layer) {
+        int n = 0;
+        for (size_t i = 1; i < g.moves.size(); ++i)
+          if (g.moves[i].layer == layer && is_perimeter(g.moves[i].type) && g.moves[i].de > 0 &&
+              !(g.moves[i - 1].de > 0 && is_perimeter(g.moves[i - 1].type)))
+            ++n;
+        return n;
+      };
+      CHECK(loops(base.gcode, 10) == 2);
+      CHECK(loops(s.gcode, 10) == 3);
+    }
+  }
+  WHEN("infill_density is 50%") {
+    auto s = slice(dir, "dense", cube, {{"skirt_loops", "0"}, {"infill_density", "50%"}});
+    THEN("more plastic goes in") { CHECK(s.gcode.filament() > 1.15 * base.gcode.filament()); }
+  }
+  WHEN("speed is 33 mm/s and the fan 40%") {
+    auto s = slice(dir, "slow", cube, {{"skirt_loops", "0"}, {"speed", "33"}, {"fan", "40%"}});
+    THEN("every extrusion runs at F1980 and the fan at 40% (102/255)") {
+      for (const auto& line : s.gcode.lines)
+        if (line.rfind("G1 X", 0) == 0 && line.find(" E") != std::string::npos &&
+            line.find(" F") != std::string::npos)
+          CHECK(line.substr(line.find(" F")) == " F1980");
+      CHECK(s.gcode.contains("M106 S102"));
+      CHECK_FALSE(s.gcode.contains("M106 S255"));
+    }
+  }
+  WHEN("the flavour is klipper and the temperatures change") {
+    auto s = slice(dir, "klipper", cube,
+                   {{"skirt_loops", "0"}, {"gcode_flavor", "klipper"}, {"nozzle_temp", "225C"}});
+    THEN("the klipper template and the new temperature are used") {
+      CHECK(s.gcode.contains(";FLAVOR:Klipper"));
+      CHECK(s.gcode.contains("PRINT_START"));
+      CHECK(s.gcode.contains("M109 S225"));
+    }
+  }
+  WHEN("skirt_loops is 2") {
+    auto s = slice(dir, "skirt", cube, {{"skirt_loops", "2"}});
+    THEN("a skirt is printed, on the first layer only") {
+      std::set<int> layers;
+      for (const auto& m : s.gcode.moves)
+        if (m.de > 0 && m.type == "Skirt/Brim") layers.insert(m.layer);
+      CHECK(layers == std::set<int>{0});
+    }
+  }
+}
+
+SCENARIO("relative and absolute E describe the same extrusion") {
+  test::TempDir dir("e2e-rel");
+  const geo::Mesh part = geo::cylinder(8, 3, 48);
+  auto abs = slice(dir, "abs", part);
+  auto rel = slice(dir, "rel", part, {{"relative_e", "true"}});
+  CHECK(rel.gcode.relative_e);
+  CHECK(rel.gcode.contains("M83"));
+  REQUIRE(abs.gcode.moves.size() == rel.gcode.moves.size());
+  for (size_t i = 0; i < abs.gcode.moves.size(); ++i) {
+    const auto &a = abs.gcode.moves[i], &r = rel.gcode.moves[i];
+    CHECK(a.x == r.x);
+    CHECK(a.y == r.y);
+    if (a.has_e) CHECK(a.de == doctest::Approx(r.de).epsilon(1e-9));
+  }
+  CHECK(abs.gcode.filament() == doctest::Approx(rel.gcode.filament()).epsilon(1e-9));
+}
+
+SCENARIO("a failing write leaves no file behind") {
+  test::TempDir dir("e2e-fail");
+  // A template with an unknown placeholder fails after the header is already written.
+  fs::create_directories(dir / "stdlib" / "gcode" / "marlin");
+  std::ofstream(dir / "stdlib" / "gcode" / "marlin" / "start.gcode") << "G28\n";
+  std::ofstream(dir / "stdlib" / "gcode" / "marlin" / "end.gcode") << "M104 S{nozle_temp}\n";
+  ::setenv("TRANCHE_STDLIB", (dir / "stdlib").c_str(), 1);
+  pipeline::SliceOptions o;
+  o.quiet = true;
+  o.model = write_mesh(dir, "cube.stl", geo::box({10, 10, 2}));
+  o.output_gcode = (dir / "out.gcode").string();
+  GIVEN("no earlier output") {
+    Report report;
+    auto r = pipeline::run_slice(o, report);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().where.find("end.gcode:1") != std::string::npos);
+    CHECK_FALSE(fs::exists(o.output_gcode));
+  }
+  GIVEN("an earlier output") {
+    std::ofstream(o.output_gcode) << "; the previous print\n";
+    Report report;
+    REQUIRE_FALSE(pipeline::run_slice(o, report).ok());
+    std::ifstream in(o.output_gcode);
+    std::string first;
+    std::getline(in, first);
+    CHECK(first == "; the previous print");  // untouched
+  }
+  ::unsetenv("TRANCHE_STDLIB");
+  int others = 0;
+  for (const auto& e : fs::directory_iterator(dir.path())) {
+    std::string n = e.path().filename().string();
+    if (n != "stdlib" && n != "cube.stl" && n != "out.gcode") ++others;  // no temporaries
+  }
+  CHECK(others == 0);
+}
