@@ -14,8 +14,8 @@
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/progress.h"
+#include "geometry/polygon/layers.h"
 #include "geometry/slice/layer_plan.h"
-#include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
 #include "runtime/context/cascade.h"
@@ -33,9 +33,10 @@ bool ends_with_svg(const std::string& path) {
 void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
   if (!o.rules.empty())
     report.warn("not-implemented", "", "--rules are not applied yet (--set is): the rule VM is not in this build");
-  if (o.overlap != OverlapMode::Additive && !svg)
-    report.warn("not-implemented", "",
-                "--overlap is not applied yet: overlapping shells are united (additive)");
+  if (o.overlap == OverlapMode::Subtractive && !svg)
+    report.warn("overlap-svg-only", "",
+                "--overlap subtractive applies to SVG drawings only; overlapping shells are united "
+                "(additive)");
 }
 
 // Moves the model so that its lowest point is at z = 0; errors for meshes with nothing to slice.
@@ -122,8 +123,13 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
                             geo::FillAngleScript* script, const SliceOptions& options, Progress& progress,
                             const ctx::Cascade& cascade, const ModelInfo& model, Report& report) {
   auto tick = [&](size_t done) { progress.update(done); };
-  progress.start("union", layers.size());
-  if (auto st = geo::make_islands(layers, tick); !st) return st.error();
+  // Islands (geometry/polygon): SVG input arrives with its overlap mode already applied.
+  geo::ResolveOptions resolve;
+  const bool boolean = options.overlap == OverlapMode::Boolean && !ends_with_svg(options.model);
+  resolve.overlap = boolean ? geo::OverlapMode::Boolean : geo::OverlapMode::Additive;
+  resolve.strict = options.strict;
+  progress.start("islands", layers.size());
+  if (auto st = geo::resolve_layers(layers, resolve, report, tick); !st) return st.error();
   progress.finish();
   if (std::all_of(layers.begin(), layers.end(), [](const geo::Layer& l) { return l.islands.empty(); }))
     return Error{options.model,
@@ -135,6 +141,9 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
     if (auto st = geo::apply_fill_angle_script(*script, layers); !st) return st.error();
     progress.finish();
   }
+  progress.start("cells", layers.size());  // monotone cells at each island's fill angle
+  if (auto st = geo::decompose_layers(layers, nullptr, &report, tick); !st) return st.error();
+  progress.finish();
 
   summary.layers = static_cast<int>(layers.size());
   if (!options.export_svg.empty()) {

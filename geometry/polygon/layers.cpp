@@ -1,7 +1,11 @@
 #include "geometry/polygon/layers.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
+#include <atomic>
 #include <optional>
 
 namespace tranche::geo {
@@ -9,11 +13,13 @@ namespace {
 
 // Runs f(i) for every layer in parallel; returns the first error by layer index.
 template <class F>
-Status each_layer(size_t n, F&& f) {
+Status each_layer(size_t n, const LayerProgress& progress, F&& f) {
   std::vector<std::optional<Error>> errors(n);
+  std::atomic<size_t> done{0};
   tbb::parallel_for(size_t{0}, n, [&](size_t i) {
     Status st = f(i);
     if (!st) errors[i] = st.error();
+    if (progress) progress(++done);
   });
   for (auto& e : errors) {
     if (e) return *e;
@@ -23,19 +29,49 @@ Status each_layer(size_t n, F&& f) {
 
 }  // namespace
 
-Status resolve_layers(std::vector<Layer>& layers, const ResolveOptions& options, Report& report) {
+Status resolve_layers(std::vector<Layer>& layers, const ResolveOptions& options, Report& report,
+                      const LayerProgress& progress) {
   std::vector<Report> local(layers.size());
-  Status st =
-      each_layer(layers.size(), [&](size_t i) { return resolve_layer(layers[i], options, local[i]); });
+  Status st = each_layer(layers.size(), progress,
+                         [&](size_t i) { return resolve_layer(layers[i], options, local[i]); });
   for (const Report& r : local) {
     for (Warning& w : r.warnings()) report.warn(std::move(w.code), std::move(w.where), std::move(w.message));
   }
   return st;
 }
 
-Status decompose_layers(std::vector<Layer>& layers, DecomposeStats* total) {
+Status decompose_layers(std::vector<Layer>& layers, DecomposeStats* total, Report* report,
+                        const LayerProgress& progress) {
   std::vector<DecomposeStats> stats(layers.size());
-  Status st = each_layer(layers.size(), [&](size_t i) { return decompose_layer(layers[i], &stats[i]); });
+  std::vector<Report> local(layers.size());
+  Status st = each_layer(layers.size(), progress, [&](size_t i) {
+    Layer& layer = layers[i];
+    if (!report) return decompose_layer(layer, &stats[i]);
+    for (size_t k = 0; k < layer.islands.size(); ++k) {
+      Island& is = layer.islands[k];
+      const double angle =
+          std::isnan(is.fill_angle_deg) ? default_fill_angle(layer.index) : is.fill_angle_deg;
+      DecomposeStats s;
+      if (Status d = decompose_island(is, angle, &s); !d) {
+        is.fill_angle_deg = angle;
+        is.cells.clear();
+        local[i].warn("decompose-failed", fmt::format("layer {} island {}", layer.index, k),
+                      fmt::format("the island could not be cut into cells at {}° ({}); it has no cells",
+                                  angle, d.error().to_string()));
+        continue;
+      }
+      stats[i].sweep_cells += s.sweep_cells;
+      stats[i].cells += s.cells;
+      stats[i].cuts += s.cuts;
+    }
+    return ok_status();
+  });
+  if (report) {
+    for (const Report& r : local) {
+      for (Warning& w : r.warnings())
+        report->warn(std::move(w.code), std::move(w.where), std::move(w.message));
+    }
+  }
   if (total) {
     for (const DecomposeStats& s : stats) {
       total->sweep_cells += s.sweep_cells;

@@ -19,6 +19,8 @@ std::string where(int layer, const Point& p) {
   return fmt::format("layer {} at ({:.3f}, {:.3f}) mm", layer, to_mm(p.X), to_mm(p.Y));
 }
 
+bool point_less(const Point& a, const Point& b) { return a.X < b.X || (a.X == b.X && a.Y < b.Y); }
+
 bool in_range(const Rings& rings) {
   for (const Ring& r : rings) {
     for (const Point& p : r) {
@@ -277,8 +279,61 @@ void split_walk(const std::vector<int>& walk, std::vector<std::vector<int>>& loo
   loops.push_back(std::move(stack));
 }
 
+// Removes vertices where the ring runs straight on (exactly collinear with their neighbours),
+// except points in `keep` (shared with another ring: they must stay vertices of both).
+void drop_collinear(Ring& ring, const std::vector<Point>& keep) {
+  const int n = static_cast<int>(ring.size());
+  std::vector<int> prev(n), next(n);
+  std::vector<char> alive(n, 1);
+  for (int i = 0; i < n; ++i) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  auto kept = [&](const Point& p) { return std::binary_search(keep.begin(), keep.end(), p, point_less); };
+  int count = n;
+  std::vector<int> work(n);
+  for (int i = 0; i < n; ++i) work[i] = n - 1 - i;
+  while (!work.empty() && count > 3) {
+    const int v = work.back();
+    work.pop_back();
+    if (!alive[v] || !exact::strictly_between(ring[prev[v]], ring[v], ring[next[v]]) || kept(ring[v]))
+      continue;
+    alive[v] = 0;
+    --count;
+    next[prev[v]] = next[v];
+    prev[next[v]] = prev[v];
+    work.push_back(prev[v]);
+    work.push_back(next[v]);
+  }
+  if (count == n) return;
+  Ring out;
+  out.reserve(count);
+  for (int i = 0; i < n; ++i) {
+    if (alive[i]) out.push_back(ring[i]);
+  }
+  ring = std::move(out);
+}
+
+// The canonical form of islands: no collinear vertices (bar shared points), every ring starting
+// at its lowest then leftmost vertex, holes and islands in that order too, areas set. Equal
+// regions give equal islands whichever way they were computed.
 void finish_islands(std::vector<Island>& islands) {
   for (Island& is : islands) {
+    std::vector<Point> all(is.shape.outer.begin(), is.shape.outer.end()), shared;
+    for (const Ring& h : is.shape.holes) all.insert(all.end(), h.begin(), h.end());
+    std::sort(all.begin(), all.end(), point_less);
+    for (size_t i = 1; i < all.size(); ++i) {
+      if (all[i] == all[i - 1] && (shared.empty() || !(shared.back() == all[i]))) shared.push_back(all[i]);
+    }
+    auto canonical = [&](Ring& r) {
+      drop_collinear(r, shared);
+      const auto first = std::min_element(r.begin(), r.end(), [](const Point& a, const Point& b) {
+        return a.Y < b.Y || (a.Y == b.Y && a.X < b.X);
+      });
+      std::rotate(r.begin(), first, r.end());
+    };
+    canonical(is.shape.outer);
+    for (Ring& h : is.shape.holes) canonical(h);
     std::sort(is.shape.holes.begin(), is.shape.holes.end(),
               [](const Ring& a, const Ring& b) { return anchor(a) < anchor(b); });
     exact::i128 a2 = exact::area2(is.shape.outer);
@@ -345,9 +400,9 @@ struct Checked {
 Status check(const Rings& loops, const ResolveOptions& options, Report& report,
              std::span<const uint8_t> repaired, Checked& out) {
   std::vector<Warning> found;
-  auto problem = [&](const char* code, const Point& at, std::string message) {
-    found.push_back({where(options.layer_index, at), std::move(message), code});
-    return !options.strict;
+  // `what` is wrong; `then` is what happens to it without --strict.
+  auto problem = [&](const char* code, const Point& at, const std::string& what, const std::string& then) {
+    found.push_back({where(options.layer_index, at), options.strict ? what : what + "; " + then, code});
   };
   Rings& valid = out.valid;
   std::vector<size_t> valid_index;
@@ -355,14 +410,16 @@ Status check(const Rings& loops, const ResolveOptions& options, Report& report,
     const Ring r = without_repeats(loops[i]);
     const Point at = loops[i].empty() ? Point(0, 0) : loops[i][0];
     if (i < repaired.size() && repaired[i]) {
-      problem("repaired-loop", at, fmt::format("loop {} was closed by joining a gap in the mesh", i));
+      problem("repaired-loop", at, fmt::format("loop {} was closed by joining a gap in the mesh", i),
+              "sliced as closed");
     }
     bool flat = true;
     for (size_t k = 2; k < r.size() && flat; ++k) flat = exact::orientation(r[0], r[1], r[k]) == 0;
     if (r.size() < 3 || flat) {
       problem("degenerate-loop", at,
-              fmt::format("loop {} {}; ignored", i,
-                          r.size() < 3 ? "has fewer than 3 distinct points" : "encloses no area"));
+              fmt::format("loop {} {}", i,
+                          r.size() < 3 ? "has fewer than 3 distinct points" : "encloses no area"),
+              "ignored");
       continue;
     }
     for (size_t k = 0; k < r.size(); ++k) {
@@ -370,8 +427,8 @@ Status check(const Rings& loops, const ResolveOptions& options, Report& report,
       const Point& q = r[(k + 1) % r.size()];
       if (turns_back(p, r[k], q)) {
         out.spikes = true;
-        problem("loop-spike", r[k],
-                fmt::format("loop {} runs back over itself (zero-width spike); removed", i));
+        problem("loop-spike", r[k], fmt::format("loop {} runs back over itself (zero-width spike)", i),
+                "removed");
         break;
       }
     }
@@ -393,12 +450,13 @@ Status check(const Rings& loops, const ResolveOptions& options, Report& report,
       const char* how = options.overlap == OverlapMode::Boolean ? "overlaps cancel (boolean mode)"
                                                                 : "resolved as their union (additive mode)";
       problem("intersecting-loops", contact_point(valid, first),
-              fmt::format("{} ({} crossing{} in this layer); {}", pair, crossings, crossings == 1 ? "" : "s",
-                          how));
+              fmt::format("{} ({} crossing{} in this layer)", pair, crossings, crossings == 1 ? "" : "s"),
+              how);
     }
   }
   if (options.strict && !found.empty()) {
-    return Error{found[0].where, found[0].message + " [" + found[0].code + ", --strict]"};
+    return Error{found[0].where, found[0].message + " (" + found[0].code +
+                                     "; --strict makes this an error: repair the model or slice without it)"};
   }
   for (Warning& w : found) report.warn(std::move(w.code), std::move(w.where), std::move(w.message));
   return ok_status();

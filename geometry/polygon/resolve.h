@@ -38,8 +38,10 @@ struct ResolveOptions {
 Status check_loops(const Rings& loops, const ResolveOptions& options, Report& report,
                    std::span<const uint8_t> repaired = {});
 
-// check_loops, then the overlap mode, then strict islands. Islands come sorted by the lowest,
-// then leftmost point of their outline; area_mm2 is set, cells are left empty. Errors: strict
+// check_loops, then the overlap mode, then strict islands, in a canonical form: no vertex where
+// a ring runs straight on (unless another ring of the island meets it there), every ring starting
+// at its lowest then leftmost vertex, holes and islands sorted by that vertex; area_mm2 set,
+// cells left empty. Errors: strict
 // mode problems, coordinates beyond ±2147 mm.
 Result<std::vector<Island>> resolve_islands(const Rings& loops, const ResolveOptions& options, Report& report,
                                             std::span<const uint8_t> repaired = {});

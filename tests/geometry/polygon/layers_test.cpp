@@ -77,3 +77,25 @@ TEST_CASE("layers: errors name the layer, warnings come in layer order") {
   REQUIRE_FALSE(st.ok());
   CHECK(st.error().where.rfind("layer 0 ", 0) == 0);
 }
+
+TEST_CASE("layers: an island that cannot be decomposed is a warning when a report is given") {
+  std::vector<Layer> layers(2);
+  layers[0].index = 0;
+  layers[1].index = 1;
+  const coord_t far = coord_t{1} << 40;  // beyond the sweep's range
+  Island bad;
+  bad.shape.outer = test::rect(0, 0, far, far);
+  layers[1].islands.push_back(bad);
+  Island good;
+  good.shape.outer = test::rect(0, 0, 10, 10);
+  layers[1].islands.push_back(good);
+  CHECK_FALSE(decompose_layers(layers).ok());
+  Report rep;
+  size_t calls = 0;
+  REQUIRE(decompose_layers(layers, nullptr, &rep, [&](size_t) { ++calls; }).ok());
+  CHECK(rep.count("decompose-failed") == 1);
+  CHECK(rep.warnings()[0].where == "layer 1 island 0");
+  CHECK(layers[1].islands[0].cells.empty());
+  CHECK(layers[1].islands[1].cells.size() == 1);
+  CHECK(calls == 2);
+}
