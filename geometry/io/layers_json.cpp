@@ -1,6 +1,7 @@
 #include "geometry/io/layers_json.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/parallel_for.h>
 
@@ -26,6 +27,23 @@ void append_ring(fmt::memory_buffer& out, const Ring& ring) {
   out.push_back(']');
 }
 
+// The island's monotone cells (geometry/polygon): fill angle, then each cell's ring with one
+// letter per edge, r (real border) or a (artificial cut). Absent before decomposition.
+void append_cells(fmt::memory_buffer& out, const Island& island) {
+  if (std::isnan(island.fill_angle_deg)) return;
+  fmt::format_to(std::back_inserter(out), ", \"fill_angle\": {}, \"cells\": [", island.fill_angle_deg);
+  for (size_t c = 0; c < island.cells.size(); ++c) {
+    const Cell& cell = island.cells[c];
+    fmt::format_to(std::back_inserter(out), "{}{{\"area\": {}, \"ring\": ", c ? "," : "",
+                   std::abs(area_mm2(cell.ring)));
+    append_ring(out, cell.ring);
+    out.append(std::string_view(", \"edges\": \""));
+    for (const EdgeKind k : cell.edges) out.push_back(k == EdgeKind::Real ? 'r' : 'a');
+    out.append(std::string_view("\"}"));
+  }
+  out.push_back(']');
+}
+
 }  // namespace
 
 void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
@@ -45,7 +63,9 @@ void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
       if (h) out.push_back(',');
       append_ring(out, island.shape.holes[h]);
     }
-    out.append(std::string_view("]}"));
+    out.push_back(']');
+    append_cells(out, island);
+    out.push_back('}');
   }
   out.append(std::string_view(layer.islands.empty() ? "]}" : "\n]}"));
 }

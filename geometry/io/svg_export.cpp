@@ -76,6 +76,32 @@ void append_layer(fmt::memory_buffer& out, const Layer& layer, size_t slot, cons
     ring(island.shape.outer);
     for (const auto& h : island.shape.holes) ring(h);
     out.append(std::string_view("\"/>\n"));
+    // Monotone cells (geometry/polygon), and the cuts between them once each: the real edges
+    // are the island's own rings above.
+    for (const auto& cell : island.cells) {
+      fmt::format_to(it, "<path class=\"cell\" tranche:fill-angle=\"{}\" tranche:area=\"{}\" d=\"",
+                     cell.fill_angle_deg, std::abs(area_mm2(cell.ring)));
+      ring(cell.ring);
+      out.append(std::string_view("\"/>\n"));
+    }
+    bool cuts = false;
+    for (const auto& cell : island.cells) {
+      for (size_t k = 0; k < cell.ring.size() && k < cell.edges.size(); ++k) {
+        const Point& a = cell.ring[k];
+        const Point& b = cell.ring[(k + 1) % cell.ring.size()];
+        if (cell.edges[k] != EdgeKind::Artificial || !(a.X < b.X || (a.X == b.X && a.Y < b.Y))) continue;
+        out.append(std::string_view(cuts ? "M" : "<path class=\"edge artificial\" d=\"M"));
+        cuts = true;
+        append_mm(out, a.X);
+        out.push_back(' ');
+        append_mm(out, -a.Y);
+        out.push_back('L');
+        append_mm(out, b.X);
+        out.push_back(' ');
+        append_mm(out, -b.Y);
+      }
+    }
+    if (cuts) out.append(std::string_view("\"/>\n"));
   }
   out.append(std::string_view("</g>\n"));
 }
@@ -108,6 +134,10 @@ Status write_layers_svg(const std::string& path, const std::vector<Layer>& layer
       ".frame {{ fill: #ffffff; stroke: #c9ced6; stroke-width: 1px; vector-effect: non-scaling-stroke; }}\n"
       ".caption {{ fill: #4b5563; font-family: sans-serif; }}\n"
       ".island {{ fill: #3b82c4; fill-opacity: 0.85; stroke: #1e3a5f; stroke-width: 0.75px; "
+      "vector-effect: non-scaling-stroke; }}\n"
+      ".cell {{ fill: none; stroke: #ffffff; stroke-opacity: 0.6; stroke-width: 0.5px; "
+      "vector-effect: non-scaling-stroke; }}\n"
+      ".edge.artificial {{ fill: none; stroke: #e0483e; stroke-width: 1px; stroke-dasharray: 4 3; "
       "vector-effect: non-scaling-stroke; }}\n"
       "</style>\n",
       layers.size());
