@@ -96,22 +96,21 @@ class Formatter final : public ctx::LineSink {
     mark(LayerText::Mark::Kind::NozzleTemp, plan_.props[PropId::NozzleTemp]);
     mark(LayerText::Mark::Kind::BedTemp, plan_.props[PropId::BedTemp]);
     t += "G92 E0\n";
+    // The layer change retracts only if the travel from the previous layer's end is long: that
+    // is known when layers are written in order, so it is a mark (before the z move, and the
+    // matching unretraction before the first extrusion). E is 0 at the first extrusion either way.
     if (retract_ > 0) {
-      t += "G1 E";
-      append_fixed(t, -retract_, 5);
-      t += " F";
-      append_int(t, retract_f_);
-      t += '\n';
+      mark(LayerText::Mark::Kind::LayerRetract, 0);
       e_int_ = -retract_;
       retracted_ = true;
-      ++out_.retractions;
+      layer_change_ = true;
     }
     t += "G1 Z";
-    append_fixed(t, z_um_ + (retracted_ && lift_ > 0 ? std::llround(lift_ * 1000) : 0), 3);
+    append_fixed(t, z_um_, 3);
     t += " F";
     append_int(t, travel_f_);
     t += '\n';
-    lifted_ = retracted_ && lift_ > 0;
+    lifted_ = false;
     f_ = travel_f_;
     toolpath::walk_layer(plan_, *this);
     ctx_.clear_from(Level::Island);
@@ -282,6 +281,13 @@ class Formatter final : public ctx::LineSink {
       t += '\n';
       lifted_ = false;
     }
+    if (retracted_ && layer_change_) {
+      mark(LayerText::Mark::Kind::LayerUnretract, 0);
+      e_int_ += retract_;
+      f_ = -1;  // the unretraction, if written, changed the feed rate
+      retracted_ = false;
+      layer_change_ = false;
+    }
     if (retracted_) {
       t += "G1";
       e_word(e_int_ + retract_);
@@ -317,6 +323,7 @@ class Formatter final : public ctx::LineSink {
   Status status_ = ok_status();
   LayerText out_;
   bool relative_ = false, retracted_ = false, lifted_ = false, has_pos_ = false, has_type_ = false;
+  bool layer_change_ = false;  // retracted_ by the layer change (a mark), not by a travel
   int64_t retract_ = 0, retract_f_ = 0, travel_f_ = 0, f_ = -1, z_um_ = 0;
   int64_t e_int_ = 0;   // absolute E since the layer's G92 E0, 1e-5 mm (relative mode writes its steps)
   int64_t e_sent_ = 0;  // extrusion written so far, 1e-5 mm

@@ -15,7 +15,9 @@ namespace tranche::gcode {
 
 struct LayerText {
   struct Mark {
-    enum class Kind : uint8_t { Fan, NozzleTemp, BedTemp };
+    // LayerRetract/LayerUnretract: the layer change's retraction, written only when the travel
+    // from the previous layer is longer than retract_before_travel.
+    enum class Kind : uint8_t { Fan, NozzleTemp, BedTemp, LayerRetract, LayerUnretract };
     size_t offset;  // insert before text[offset]
     Kind kind;
     double value;  // ratio for the fan, °C for temperatures

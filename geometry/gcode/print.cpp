@@ -309,6 +309,17 @@ class PrintWriter final : public ctx::LineSink {
     std::string out;
     out.reserve(t.text.size() + 256);
     size_t at = 0;
+    // The layer change retracts when the travel from the previous layer's end is long.
+    const double r = P[PropId::RetractLength];
+    bool change_retract = false;
+    if (t.any_move && r > 0) {
+      double len = has_last
+                       ? std::hypot(double(t.first.X - last.X), double(t.first.Y - last.Y)) * geo::kMmPerUnit
+                       : 1e9;
+      change_retract = len > P[PropId::RetractBeforeTravel];
+    }
+    const long rf = std::lround(P[PropId::RetractSpeed] * 60);
+    const bool rel = P[PropId::RelativeE] != 0;
     for (const auto& m : t.marks) {
       out.append(t.text, at, m.offset - at);
       at = m.offset;
@@ -325,6 +336,21 @@ class PrintWriter final : public ctx::LineSink {
           if (m.value != bed_) out += fmt::format("M140 S{} ; bed temperature\n", m.value);
           bed_ = m.value;
           break;
+        case LayerText::Mark::Kind::LayerRetract:
+          if (change_retract) {
+            out += "G1 E";
+            append_fixed(out, -std::llround(r * 1e5), 5);
+            out += fmt::format(" F{}\n", rf);
+            ++summary_.retractions;
+          }
+          break;
+        case LayerText::Mark::Kind::LayerUnretract:
+          if (change_retract) {
+            out += "G1 E";
+            append_fixed(out, rel ? std::llround(r * 1e5) : 0, 5);
+            out += fmt::format(" F{}\n", rf);
+          }
+          break;
       }
     }
     out.append(t.text, at, std::string::npos);
@@ -332,7 +358,7 @@ class PrintWriter final : public ctx::LineSink {
     // Time: the layer's own estimate, plus the layer change (retract, z, travel, unretract).
     double change = 0;
     if (t.any_move) {
-      if (P[PropId::RetractLength] > 0) change += 2 * P[PropId::RetractLength] / P[PropId::RetractSpeed];
+      if (change_retract) change += 2 * r / P[PropId::RetractSpeed];
       change += job_.layers[static_cast<size_t>(item.index)].height() / setup_.motion.z_speed;
       if (has_last) {
         double len = std::hypot(double(t.first.X - last.X), double(t.first.Y - last.Y)) * geo::kMmPerUnit;

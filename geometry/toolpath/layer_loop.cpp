@@ -360,9 +360,19 @@ Status LayerTask::island_content(IslandPlan& ip) {
   ss.bottom_layers = static_cast<int>(P[PropId::BottomLayers]);
   ss.density = P[PropId::InfillDensity];
   ss.width = spec.fill_width;
-  EdgeGrid border(per.fill_region);
   double angle = P[PropId::FillAngle];
-  for (const FillRegion& region : split_fill(per.fill_region, nb_, ss))
+  auto regions = split_fill(per.fill_region, nb_, ss);
+  // Solid zig-zags leave small notches between line ends on the side without a connector; their
+  // regions reach a further quarter bead into the perimeters so that the beads cover those.
+  const double reach = 0.25 * spec.fill_width;
+  geo::Rings wide;
+  for (auto& region : regions) {
+    if (region.kind == PathKind::Infill) continue;
+    if (wide.empty()) wide = offset(per.fill_region, reach);
+    region.rings = intersection(offset(region.rings, reach), wide);
+  }
+  EdgeGrid border(wide.empty() ? per.fill_region : union_of(per.fill_region, wide));
+  for (const FillRegion& region : regions)
     if (Status s = cell_level(ip, region, border, angle); !s) return s;
   return ok_status();
 }
@@ -378,8 +388,14 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
   FillSpec fs;
   fs.angle_deg = angle;
   fs.pitch_mm = s / std::min(density, 1.0);
-  fs.bed_grid = !solid;
   fs.artificial_inset_mm = 0.5 * s;
+  double flow_scale = 1.0;
+  if (solid) {  // border to border of the whole region, shared by its cells
+    SolidGrid g = region_grid(across_range(region.rings, angle), s);
+    fs.origin_mm = g.origin_mm;
+    fs.pitch_mm = g.pitch_mm;
+    flow_scale = std::clamp(g.ratio, 0.6, 1.4);
+  }
   for (CellShape& cs : make_cells(region.rings, angle, border, report_, where())) {
     CellPlan cell;
     cell.index = static_cast<int>(ip.cells.size());
@@ -392,7 +408,7 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
       p.kind = region.kind;
       p.cell = cell.index;
       p.width = static_cast<float>(w);
-      p.flow_scale = static_cast<float>(std::clamp(fp.pitch_ratio, 0.6, 1.4));
+      p.flow_scale = static_cast<float>(flow_scale);
       p.pts = std::move(fp.pts);
       p.border = std::move(fp.border);
       p.props = *props;

@@ -10,6 +10,25 @@ using geo::coord_t;
 using geo::EdgeKind;
 using schema::Border;
 
+std::pair<double, double> across_range(const geo::Rings& rings, double angle_deg) {
+  const double a = angle_deg * std::numbers::pi / 180.0, c = std::cos(a), s = std::sin(a);
+  double lo = 1e300, hi = -1e300;
+  for (const auto& r : rings)
+    for (const auto& p : r) {
+      double v = (-static_cast<double>(p.X) * s + static_cast<double>(p.Y) * c) * geo::kMmPerUnit;
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+  return {lo, hi};
+}
+
+SolidGrid region_grid(std::pair<double, double> range, double pitch_mm) {
+  double h = range.second - range.first;
+  int n = static_cast<int>(std::lround(h / pitch_mm));
+  if (n <= 0) return {0.5 * (range.first + range.second), 1e6, 1.0};  // one line, in the middle
+  double p = h / n;
+  return {range.first, p, p / pitch_mm};
+}
+
 FillShape fill_shape(const geo::Rings& rings, EdgeKind kind) {
   FillShape s;
   s.rings = rings;
@@ -58,9 +77,17 @@ Ring2 inset(const geo::Ring& ring, const std::vector<EdgeKind>& kinds, double d,
   if (n < 3 || d <= 0) return out;
   bool any = std::any_of(k.begin(), k.end(), [](EdgeKind e) { return e == EdgeKind::Artificial; });
   if (!any) return out;
+  // Per edge: d·|sin θ| with θ its angle to the lines, so that line ends stop d short of it.
+  std::vector<double> dist(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    if (k[i] != EdgeKind::Artificial) continue;
+    const UV &a = p[i], &b = p[(i + 1) % n];
+    double len = std::hypot(b.u - a.u, b.v - a.v);
+    dist[i] = len > 0 ? d * std::abs(b.v - a.v) / len : 0.0;
+  }
   for (size_t i = 0; i < n; ++i) {
     size_t ip = (i + n - 1) % n;
-    double dp = k[ip] == EdgeKind::Artificial ? d : 0, dn = k[i] == EdgeKind::Artificial ? d : 0;
+    double dp = dist[ip], dn = dist[i];
     if (dp == 0 && dn == 0) continue;
     UV P = p[i], A = p[ip], B = p[(i + 1) % n];
     double tpu = P.u - A.u, tpv = P.v - A.v, lp = std::hypot(tpu, tpv);
@@ -75,7 +102,7 @@ Ring2 inset(const geo::Ring& ring, const std::vector<EdgeKind>& kinds, double d,
       double lam = ((b.u - a.u) * tnv - (b.v - a.v) * tnu) / cr;
       q = {a.u + tpu * lam, a.v + tpv * lam};
     }
-    double mu = q.u - P.u, mv = q.v - P.v, m = std::hypot(mu, mv), cap = 3 * std::max(dp, dn);
+    double mu = q.u - P.u, mv = q.v - P.v, m = std::hypot(mu, mv), cap = 3 * d;
     if (m > cap) q = {P.u + mu / m * cap, P.v + mv / m * cap};
     out.pts[i] = q;
   }
@@ -103,23 +130,15 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
   }
   if (rings.empty() || vmax <= vmin) return out;
 
-  // Scan line positions (v), ascending.
+  // Scan line positions (v), ascending, on the grid origin + k·pitch.
   std::vector<double> lines;
-  double pitch_ratio = 1.0;
   const double delta = 1.0;  // 1 nm inside the extremes, off the extreme vertices
-  if (spec.bed_grid) {
-    for (double k = std::ceil((vmin + delta) / pitch); k * pitch <= vmax - delta; k += 1)
-      lines.push_back(k * pitch);
-  } else {
-    double h = vmax - vmin;
-    int n = static_cast<int>(std::lround(h / pitch));
-    if (n <= 0) {
-      lines.push_back(0.5 * (vmin + vmax));
-    } else {
-      for (int i = 0; i <= n; ++i) lines.push_back(std::clamp(vmin + h * i / n, vmin + delta, vmax - delta));
-      pitch_ratio = h / n / pitch;
-    }
-  }
+  const double origin = spec.origin_mm * geo::kUnitsPerMm;
+  // Lines within a few nm of the extremes (a grid line on the region's border) move just inside.
+  for (double k = std::ceil((vmin - 4 * delta - origin) / pitch); origin + k * pitch <= vmax + 4 * delta;
+       k += 1)
+    lines.push_back(std::clamp(origin + k * pitch, vmin + delta, vmax - delta));
+  lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
   if (lines.empty()) return out;
 
   // Crossings of every edge with the lines, bucketed per line (half-open in v).
@@ -198,7 +217,6 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
   };
   for (const auto& run : runs) {
     FillPath fp;
-    fp.pitch_ratio = pitch_ratio;
     auto add = [&](UV p, Border b) {
       geo::Point q = to_xy(p);
       if (!fp.pts.empty()) {

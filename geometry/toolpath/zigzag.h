@@ -4,6 +4,7 @@
 // not monotone is filled by several zig-zags (one per run of connectable lines).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "geometry/core/layer.h"
@@ -21,11 +22,14 @@ struct FillShape {
 struct FillSpec {
   double angle_deg = 45;  // direction of the lines, counter-clockwise from +x
   double pitch_mm = 0.4;  // distance between consecutive lines
-  // Sparse fill puts its lines on a grid fixed to the bed (v = k·pitch) so that cells and
-  // layers line up; solid fill spreads its lines evenly from border to border of each shape.
-  bool bed_grid = false;
-  // Distance kept from artificial edges (half a bead), so that the connectors of two cells
-  // sharing a cut lie side by side instead of on top of each other. Real edges are followed.
+  // The lines lie on the grid v = origin + k·pitch, v measured across the lines (mm, see
+  // across_range): sparse fill uses a grid fixed to the bed (origin 0) so that cells and layers
+  // line up; solid fill a grid spread from border to border of its whole region (region_grid),
+  // shared by the region's cells so that lines continue straight across their cuts.
+  double origin_mm = 0;
+  // Line ends and connectors keep away from artificial edges so that two cells sharing a cut
+  // do not lay beads on top of each other: line ends stop this far short of the cut along
+  // the line (half a bead: the two round ends touch), connectors run this far·|sin θ| beside it.
   double artificial_inset_mm = 0.2;
 };
 
@@ -34,10 +38,19 @@ struct FillSpec {
 struct FillPath {
   geo::Ring pts;  // open polyline (not closed)
   std::vector<schema::Border> border;
-  // Solid fill spreads its lines evenly from border to border: actual pitch / requested pitch.
-  // Scaling the flow by it keeps the deposited volume per area exact.
-  double pitch_ratio = 1.0;
 };
+
+// Range [lo, hi] (mm) of v = −x·sin a + y·cos a over the rings: the extent across lines at
+// angle a (degrees).
+std::pair<double, double> across_range(const geo::Rings& rings, double angle_deg);
+
+// A grid for solid fill over the region spanning `range` (mm across the lines): lines on both
+// borders and evenly between, as close to `pitch_mm` as fits. Returns the spec (origin, pitch)
+// and the ratio actual / requested pitch, by which the flow is scaled to keep the volume exact.
+struct SolidGrid {
+  double origin_mm, pitch_mm, ratio;
+};
+SolidGrid region_grid(std::pair<double, double> range, double pitch_mm);
 
 std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec);
 

@@ -95,7 +95,6 @@ TEST_CASE("zig-zag: sparse lines sit on a bed grid so neighbouring cells line up
   FillSpec spec;
   spec.angle_deg = 0;
   spec.pitch_mm = 2.0;
-  spec.bed_grid = true;
   auto a = zigzag(fill_shape({test::rect(0.3, 0.3, 5, 9.7)}, geo::EdgeKind::Real), spec);
   REQUIRE(a.size() == 1);
   for (size_t i = 0; i + 1 < a[0].pts.size(); ++i)
@@ -123,6 +122,32 @@ TEST_CASE("zig-zag: artificial edges are kept half a bead away, real ones follow
   CHECK(max_x == Approx(9.8));
   CHECK(min_x == Approx(0));
   CHECK(artificial_connector);
+}
+
+TEST_CASE("zig-zag: solid grids spread border to border; a slanted cut pulls line ends back half a bead") {
+  auto g = region_grid({1.0, 11.2}, 0.4);
+  CHECK(g.origin_mm == 1.0);
+  CHECK(g.pitch_mm * std::lround(10.2 / 0.4) == Approx(10.2));
+  CHECK(g.ratio == Approx(g.pitch_mm / 0.4));
+  auto one = region_grid({0, 0.1}, 0.4);  // thinner than half a pitch: one line in the middle
+  CHECK(one.origin_mm == Approx(0.05));
+  // A triangle cell whose hypotenuse is a cut at 30° to the (horizontal) lines.
+  geo::Ring tri{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(0, 10 * std::tan(M_PI / 6))};
+  FillShape shape = fill_shape({tri}, geo::EdgeKind::Real);
+  shape.kinds[0][1] = geo::EdgeKind::Artificial;
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 0.5;
+  spec.artificial_inset_mm = 0.2;
+  auto paths = zigzag(shape, spec);
+  REQUIRE(paths.size() == 1);
+  const auto& p = paths[0];
+  for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+    if (p.border[i] != schema::Border::None) continue;
+    double y = geo::to_mm(p.pts[i].Y), x_end = std::max(geo::to_mm(p.pts[i].X), geo::to_mm(p.pts[i + 1].X));
+    double x_cut = (10 * std::tan(M_PI / 6) - y) / std::tan(M_PI / 6);
+    CHECK(x_cut - x_end == Approx(0.2).epsilon(0.01));
+  }
 }
 
 TEST_CASE("zig-zag: a U shape (not monotone) needs more than one run; every point stays inside") {
@@ -160,8 +185,7 @@ TEST_CASE("zig-zag: any angle, the lines keep the requested direction and pitch"
     offsets.push_back((-geo::to_mm(p.pts[i].X) + geo::to_mm(p.pts[i].Y)) / std::sqrt(2.0));
   }
   std::sort(offsets.begin(), offsets.end());
-  for (size_t i = 1; i < offsets.size(); ++i)
-    CHECK(offsets[i] - offsets[i - 1] == Approx(0.8 * p.pitch_ratio).epsilon(1e-3));
+  for (size_t i = 1; i < offsets.size(); ++i) CHECK(offsets[i] - offsets[i - 1] == Approx(0.8).epsilon(1e-3));
 }
 
 TEST_CASE("perimeters: an island thinner than a bead is a thin wall with its flow scaled to its area") {
