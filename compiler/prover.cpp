@@ -83,14 +83,13 @@ bool reads_inherited(const Expr& e) {
 }
 
 // The natural domain of a numeric field: indices and counts are >= 0 (a perimeter number is
-// -1 for other paths), sizes, areas, volumes and times >= 0, ratios in [0, 1].
+// -1 for other paths), sizes, areas and times >= 0, ratios in [0, 1]; anything else is open.
 std::pair<double, double> field_domain(const schema::FieldInfo& f) {
   if (f.type == schema::Type::Int) return {f.id == schema::FieldId::PathPerimeter ? -1 : 0, INFINITY};
   switch (f.unit) {
     case schema::Unit::Ratio:
       return {0, 1};
-    case schema::Unit::Mm2:
-    case schema::Unit::Mm3:
+    case schema::Unit::Mm2:  // not Mm3: an inside-out mesh has a negative volume
     case schema::Unit::S:
       return {0, INFINITY};
     case schema::Unit::Mm: {

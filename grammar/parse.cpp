@@ -12,6 +12,8 @@ namespace tranche::grammar {
 
 namespace {
 
+size_t g_ll_fallbacks = 0;
+
 // Parses with SLL prediction first (fast, enough for every valid file) and again with full LL
 // and error reporting only when SLL fails. `build` runs on an error-free tree while the parser
 // (which owns the tree) is alive; returns false on syntax errors.
@@ -31,6 +33,7 @@ bool parse_tokens(Input& input, Tokens& tokens, diag::Sink& sink, const ParseOpt
   try {
     tree = entry(parser);
   } catch (const antlr4::ParseCancellationException&) {
+    ++g_ll_fallbacks;
     auto strategy = std::make_shared<ReportingStrategy>(input, sink, std::move(unclosed), budget);
     parser.reset();
     parser.setErrorHandler(strategy);
@@ -120,6 +123,8 @@ ast::ExprPtr parse_expression(const ast::SourceMap& sources, uint32_t file_id, u
     return nullptr;
   }
 }
+
+size_t ll_fallbacks() { return g_ll_fallbacks; }
 
 void clear_parser_caches() {
   antlr4::ANTLRInputStream in("");

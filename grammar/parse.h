@@ -25,6 +25,10 @@ ast::File parse_file(const ast::SourceMap& sources, uint32_t file_id, diag::Sink
 ast::ExprPtr parse_expression(const ast::SourceMap& sources, uint32_t file_id, uint32_t begin, uint32_t end,
                               diag::Sink& sink, const ParseOptions& options = {});
 
+// How many parses needed the slow full-LL pass since the program started: SLL prediction
+// handles every valid input of this grammar, so this only grows on syntax errors.
+size_t ll_fallbacks();
+
 // ANTLR keeps prediction caches across parses (shared, growing); long-running callers such as
 // the fuzzer drop them from time to time. Not thread-safe, like the parser itself.
 void clear_parser_caches();

@@ -94,6 +94,24 @@ TEST_CASE("parser: every newline convention counts lines the same way") {
   }
 }
 
+TEST_CASE("parser: valid input never needs the full-LL pass") {
+  size_t before = grammar::ll_fallbacks();
+  test::Compiled c;
+  test::compile_text(
+      c,
+      "rule \"a\" when path.kind in (infill, bridge) and layer.index in 1..3 or not cell.solid {\n"
+      "  speed = if layer.index < 2 then 20 mm/s else min(speed, 50 mm/s)\n"
+      "  before path append { gcode \"M117 {layers[layer.index - 1].area:.1}\" }\n"
+      "  replace path { for p in path.points { move to (p.x, p.y) with speed = 10 mm/s } }\n"
+      "}\n"
+      "on layer.end when (layer.index) in (1, 2) { comment \"x\" }\n");
+  CHECK(c.sink.errors() == 0);
+  CHECK(grammar::ll_fallbacks() == before);
+  test::Compiled bad;
+  test::compile_text(bad, "rule \"x\" { speed = = }\n");
+  CHECK(grammar::ll_fallbacks() == before + 1);
+}
+
 TEST_CASE("parser: a large realistic file parses into every rule") {
   std::string text;
   for (int i = 0; i < 500; ++i)
