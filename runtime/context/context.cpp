@@ -1,5 +1,7 @@
 #include "runtime/context/context.h"
 
+#include <atomic>
+
 namespace tranche::ctx {
 
 PropertyValues PropertyValues::schema_defaults() {
@@ -55,7 +57,19 @@ void LayerTable::set(size_t index, FieldId field, double value) {
 
 Context::Context() : props_(&static_defaults()) {}
 
+namespace {
+// Generations: a per-thread counter under a per-thread prefix, so no two contexts on any
+// threads ever share one, without a shared atomic on every element.
+uint64_t next_generation() {
+  static std::atomic<uint64_t> threads{0};
+  thread_local uint64_t prefix = (threads.fetch_add(1) + 1) << 40;
+  thread_local uint64_t counter = 0;
+  return prefix | (++counter & ((uint64_t(1) << 40) - 1));
+}
+}  // namespace
+
 void Context::clear_from(schema::Level level) {
+  for (int l = static_cast<int>(level); l < schema::kLevelCount; ++l) gen_[static_cast<size_t>(l)] = next_generation();
   for (const auto& f : schema::fields())
     if (static_cast<int>(f.level) >= static_cast<int>(level)) values_[slot(f.id)] = 0.0;
   if (static_cast<int>(level) <= static_cast<int>(schema::Level::Path)) {

@@ -25,6 +25,10 @@ inline constexpr size_t slot(PropId id) { return static_cast<size_t>(id); }
 // ints, bools and enum values as exact doubles).
 struct PropertyValues {
   std::array<double, schema::kPropCount> values{};
+  // Per property, the value the cascade gives it below the compiled rules (schema default,
+  // built-in defaults, the fill-angle script), recorded by the rules when they decide it: a
+  // rule that sets `speed` reads `speed` as the value of the rules before it, from there.
+  std::array<double, schema::kPropCount> base{};
 
   double operator[](PropId id) const { return values[slot(id)]; }
   double& operator[](PropId id) { return values[slot(id)]; }
@@ -100,8 +104,14 @@ class Context {
 
   // Writers, used by the loop that owns the context.
   void set(FieldId id, double v) { values_[slot(id)] = v; }
-  // Sets every field of `level` and of the levels nested in it to 0 (entering a new element).
+  // Sets every field of `level` and of the levels nested in it to 0 (entering a new element),
+  // and gives those levels a new generation.
   void clear_from(schema::Level level);
+  // A number that identifies the element of `level` this context describes: it changes at
+  // every clear_from of that level or an outer one, and is unique across contexts and threads,
+  // so that a result computed from the fields of that level (and outer ones) can be kept while
+  // it stays the same. 0 means "never entered by clear_from": nothing may be kept.
+  uint64_t generation(schema::Level level) const { return gen_[static_cast<size_t>(level)]; }
   void set_layers(const LayerTable* table) { layers_ = table; }
   void set_points(std::span<const PointMm> pts) { points_ = pts; }
   void set_pieces(Collection c) { pieces_ = c; }
@@ -110,6 +120,7 @@ class Context {
 
  private:
   std::array<double, schema::kFieldCount> values_{};
+  std::array<uint64_t, schema::kLevelCount> gen_{};
   const LayerTable* layers_ = nullptr;
   std::span<const PointMm> points_;
   Collection pieces_, islands_;

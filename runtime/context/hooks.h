@@ -69,12 +69,13 @@ class Executors {
   virtual Status run(schema::Level level, When when, const Context& ctx, LineSink& out) const = 0;
 };
 
-// Options of `move to (X, Y) [travel] [with speed = S, flow = F]`; unset values take the
-// element's decided speed and flow.
+// Options of `move to (X, Y) [travel] [with speed = S, flow = F, width = W]`; unset values take
+// the element's decided speed, flow and width.
 struct MoveOptions {
   bool travel = false;
   std::optional<double> speed;  // mm/s
   std::optional<double> flow;   // ratio
+  std::optional<double> width;  // mm
 };
 
 // What the statements of a replacer can do to the element being replaced.

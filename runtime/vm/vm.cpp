@@ -1,0 +1,748 @@
+#include "runtime/vm/vm.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "runtime/vm/verify.h"
+
+namespace tranche::vm {
+
+using schema::Level;
+using schema::Stage;
+
+Counters& thread_counters() {
+  thread_local Counters c;
+  return c;
+}
+
+namespace {
+
+// Registers of every frame of the calling thread: frames nest (a value that reads its own
+// property's earlier value runs another candidate's chunk), so they are carved from one block
+// that never moves.
+constexpr size_t kStackRegs = 1u << 17;
+
+struct ThreadState {
+  std::unique_ptr<double[]> regs{new double[kStackRegs]()};
+  size_t top = 0;
+  struct Kept {
+    uint64_t gen = 0;
+    uint32_t owner = 0;
+    uint8_t value = 0;
+  };
+  std::vector<Kept> kept;  // per conjunct
+  std::string text;        // the template being built
+};
+
+ThreadState& state() {
+  thread_local ThreadState s;
+  return s;
+}
+
+enum class Fault : uint8_t { None, DivZero, ModZero, SqrtNeg, NotFinite, TextTooLong, OutputTooLong, Steps,
+                             Depth, Api };
+
+std::string format_number(double v, uint16_t decimals) {
+  if (decimals != kDefaultDecimals) {
+    std::string s = fmt::format("{:.{}f}", v, decimals);
+    if (s.starts_with('-') && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+    return s;
+  }
+  std::string s = fmt::format("{:.3f}", v);
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+double round_half_away(double v) { return std::round(v); }
+
+}  // namespace
+
+// Runs chunks for one call into the RuleSet (one decision, one hook, one replacement).
+class Machine {
+ public:
+  Machine(const RuleSet& rs, const ctx::Context& c, const ctx::PropertyValues* props)
+      : rs_(rs), p_(rs.program_), ctx_(c), props_(props), st_(state()) {}
+
+  ctx::LineSink* out = nullptr;
+  ctx::ReplaceApi* api = nullptr;
+  Level level = Level::Piece;  // the decision's level: conjuncts of outer levels are kept
+
+  // Runs chunk `ci`; false on a fault (see error()).
+  bool exec(uint32_t ci, double& result);
+  // Whether every conjunct of rule r holds.
+  bool test(uint32_t r, bool& result);
+  // The value of property q as the candidates from position `from` on decide it (else its base).
+  bool resolve(schema::PropId q, size_t from, double& result);
+
+  Error error() const;
+  bool faulted() const { return fault_ != Fault::None; }
+  void fail_api(Error e) {
+    fault_ = Fault::Api;
+    api_error_ = std::move(e);
+  }
+
+ private:
+  bool fault(Fault f, uint32_t ci, uint32_t pc) {
+    fault_ = f;
+    fault_chunk_ = ci;
+    fault_pc_ = pc;
+    return false;
+  }
+  double elem(Coll c, size_t index, uint16_t member) const;
+  size_t count(Coll c) const;
+  bool emit(bool comment, uint32_t ci, uint32_t pc);
+
+  const RuleSet& rs_;
+  const Program& p_;
+  const ctx::Context& ctx_;
+  const ctx::PropertyValues* props_;
+  ThreadState& st_;
+  uint64_t steps_ = 0;
+  size_t emitted_ = 0;
+  int depth_ = 0;
+  Fault fault_ = Fault::None;
+  uint32_t fault_chunk_ = 0, fault_pc_ = 0;
+  Error api_error_;
+  uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
+
+  friend class RuleSet;
+};
+
+size_t Machine::count(Coll c) const {
+  switch (c) {
+    case Coll::Points: return ctx_.points().size();
+    case Coll::Pieces: return ctx_.pieces().size();
+    case Coll::Islands: return ctx_.islands().size();
+  }
+  return 0;
+}
+
+double Machine::elem(Coll c, size_t i, uint16_t m) const {
+  switch (c) {
+    case Coll::Points: {
+      auto pts = ctx_.points();
+      if (i >= pts.size()) return 0;
+      return m == kPointX ? pts[i].x : m == kPointY ? pts[i].y : static_cast<double>(i);
+    }
+    case Coll::Pieces: return ctx_.pieces().get(i, static_cast<schema::FieldId>(m));
+    case Coll::Islands: return ctx_.islands().get(i, static_cast<schema::FieldId>(m));
+  }
+  return 0;
+}
+
+bool Machine::emit(bool comment, uint32_t ci, uint32_t pc) {
+  std::string& t = st_.text;
+  size_t start = 0;
+  while (start <= t.size()) {
+    size_t nl = t.find('\n', start);
+    if (nl == std::string::npos) nl = t.size();
+    std::string_view line(t.data() + start, nl - start);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    size_t lead = line.find_first_not_of(" \t");
+    if (lead != std::string_view::npos) {
+      line.remove_prefix(lead);
+      emitted_ += line.size() + 3;
+      if (emitted_ > kMaxOutputBytes) return fault(Fault::OutputTooLong, ci, pc);
+      if (comment) {
+        std::string c = "; ";
+        c += line;
+        if (api) api->comment(line);
+        else if (out) out->line(c);
+      } else {
+        if (api) api->gcode(line);
+        else if (out) out->line(line);
+      }
+    }
+    start = nl + 1;
+  }
+  t.clear();
+  return true;
+}
+
+bool Machine::test(uint32_t r, bool& result) {
+  const Rule& rule = p_.rules[r];
+  auto& counters = thread_counters();
+  for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) {
+    const Conjunct& cj = p_.conjuncts[k];
+    bool keep = rs_.hoistable_[k] && cj.level < level;
+    uint64_t gen = keep ? ctx_.generation(cj.level) : 0;
+    if (gen != 0) {
+      auto& kept = st_.kept;
+      if (kept.size() < p_.conjuncts.size()) kept.resize(p_.conjuncts.size());
+      ThreadState::Kept& e = kept[k];
+      if (e.gen == gen && e.owner == rs_.uid_) {
+        ++counters.conjuncts_kept;
+        if (!e.value) return result = false, true;
+        continue;
+      }
+      double v;
+      ++counters.conjuncts_run;
+      uint32_t saved = rule_;
+      rule_ = r;
+      if (!exec(cj.chunk, v)) return false;
+      rule_ = saved;
+      e.gen = gen;
+      e.owner = rs_.uid_;
+      e.value = v != 0;
+      if (v == 0) return result = false, true;
+      continue;
+    }
+    double v;
+    ++counters.conjuncts_run;
+    uint32_t saved = rule_;
+    rule_ = r;
+    if (!exec(cj.chunk, v)) return false;
+    rule_ = saved;
+    if (v == 0) return result = false, true;
+  }
+  return result = true, true;
+}
+
+bool Machine::resolve(schema::PropId q, size_t from, double& result) {
+  const Candidates& cands = p_.props[static_cast<size_t>(q)];
+  for (size_t i = from; i < cands.size(); ++i) {
+    bool ok;
+    if (!test(cands[i].rule, ok)) return false;
+    if (!ok) continue;
+    uint32_t saved = rule_;
+    rule_ = cands[i].rule;
+    if (!exec(cands[i].chunk, result)) return false;
+    rule_ = saved;
+    return true;
+  }
+  result = props_->base[static_cast<size_t>(q)];
+  return true;
+}
+
+#if defined(__GNUC__)
+// Dispatch through a table of label addresses (a GNU extension that both GCC and Clang have):
+// one indirect jump per instruction, predicted per opcode.
+#define TRANCHE_COMPUTED_GOTO 1
+#pragma GCC diagnostic ignored "-Wpedantic"
+#endif
+
+bool Machine::exec(uint32_t ci, double& result) {
+  const Chunk& ch = p_.chunks[ci];
+  if (st_.top + ch.regs > kStackRegs || depth_ >= kMaxInheritDepth) return fault(Fault::Depth, ci, 0);
+  double* r = st_.regs.get() + st_.top;
+  st_.top += ch.regs;
+  ++depth_;
+  struct Pop {
+    ThreadState& s;
+    size_t n;
+    int& depth;
+    ~Pop() {
+      s.top -= n;
+      --depth;
+    }
+  } pop{st_, ch.regs, depth_};
+
+  const Instr* code = p_.code.data() + ch.start;
+  const double* K = p_.consts.data();
+  const double* F = ctx_.values().data();
+  const Instr* ip = code;
+  const Instr* in;
+  auto jump = [&](uint16_t target) {
+    if (code + target <= in && ++steps_ > kMaxLoopSteps) return false;
+    ip = code + target;
+    return true;
+  };
+  auto pc = [&] { return static_cast<uint32_t>(in - code); };
+
+#define A (in->a)
+#define B (in->b)
+#define C (in->c)
+#define D (in->d)
+#define JUMP(t)                                          \
+  do {                                                   \
+    if (!jump(t)) return fault(Fault::Steps, ci, pc());  \
+  } while (0)
+
+#ifdef TRANCHE_COMPUTED_GOTO
+  static const void* labels[] = {
+#define TRANCHE_OP(Name, mnemonic, a, b, c, d, Class) &&op_##Name,
+#include "runtime/vm/opcodes.def"
+#undef TRANCHE_OP
+  };
+#define CASE(Name) op_##Name:
+#define NEXT                   \
+  do {                         \
+    in = ip++;                 \
+    goto* labels[in->op];      \
+  } while (0)
+  NEXT;
+#else
+#define CASE(Name) case Op::Name:
+#define NEXT break
+  for (;;) {
+    in = ip++;
+    switch (in->code()) {
+#endif
+
+  CASE(LoadK) r[A] = K[B]; NEXT;
+  CASE(Field) r[A] = F[B]; NEXT;
+  CASE(Prop) r[A] = props_->values[B]; NEXT;
+  CASE(Inherit) {
+    const Candidates& cands = p_.props[B];
+    // Candidates are in descending rule order: start at the first one below rule C.
+    auto it = std::lower_bound(cands.begin(), cands.end(), C,
+                               [](const Candidate& c, uint32_t rule) { return c.rule >= rule; });
+    double v;
+    if (!resolve(static_cast<schema::PropId>(B), static_cast<size_t>(it - cands.begin()), v)) return false;
+    r[A] = v;
+    NEXT;
+  }
+  CASE(Layer) {
+    double i = r[B];
+    r[A] = std::isfinite(i) ? ctx_.layer(static_cast<long>(std::llround(std::clamp(i, -1e9, 1e9))),
+                                         static_cast<schema::FieldId>(C))
+                            : 0.0;
+    NEXT;
+  }
+  CASE(LayerRel) {
+    long idx = static_cast<long>(F[static_cast<size_t>(schema::FieldId::LayerIndex)]) + static_cast<long>(B) - 1;
+    r[A] = ctx_.layer(idx, static_cast<schema::FieldId>(C));
+    NEXT;
+  }
+  CASE(Move) r[A] = r[B]; NEXT;
+  CASE(Count) r[A] = static_cast<double>(count(static_cast<Coll>(B))); NEXT;
+  CASE(Elem) {
+    double i = r[B];
+    r[A] = i >= 0 && std::isfinite(i) ? elem(static_cast<Coll>(C), static_cast<size_t>(i), D) : 0.0;
+    NEXT;
+  }
+  CASE(Neg) r[A] = -r[B]; NEXT;
+  CASE(Not) r[A] = r[B] == 0 ? 1.0 : 0.0; NEXT;
+  CASE(Add) r[A] = r[B] + r[C]; NEXT;
+  CASE(Sub) r[A] = r[B] - r[C]; NEXT;
+  CASE(Mul) r[A] = r[B] * r[C]; NEXT;
+  CASE(Div) {
+    if (r[C] == 0) return fault(Fault::DivZero, ci, pc());
+    r[A] = r[B] / r[C];
+    NEXT;
+  }
+  CASE(Mod) {
+    double a = r[B], b = r[C];
+    if (b == 0) return fault(Fault::ModZero, ci, pc());
+    r[A] = a - b * std::floor(a / b);
+    NEXT;
+  }
+  CASE(Eq) r[A] = r[B] == r[C]; NEXT;
+  CASE(Ne) r[A] = r[B] != r[C]; NEXT;
+  CASE(Lt) r[A] = r[B] < r[C]; NEXT;
+  CASE(Le) r[A] = r[B] <= r[C]; NEXT;
+  CASE(Min) r[A] = std::min(r[B], r[C]); NEXT;
+  CASE(Max) r[A] = std::max(r[B], r[C]); NEXT;
+  CASE(Clamp) r[A] = std::min(std::max(r[B], r[C]), r[D]); NEXT;
+  CASE(Lerp) r[A] = r[B] + (r[C] - r[B]) * r[D]; NEXT;
+  CASE(Abs) r[A] = std::abs(r[B]); NEXT;
+  CASE(Round) r[A] = round_half_away(r[B]); NEXT;
+  CASE(Floor) r[A] = std::floor(r[B]); NEXT;
+  CASE(Ceil) r[A] = std::ceil(r[B]); NEXT;
+  CASE(Sqrt) {
+    if (r[B] < 0) return fault(Fault::SqrtNeg, ci, pc());
+    r[A] = std::sqrt(r[B]);
+    NEXT;
+  }
+  CASE(Sin) r[A] = std::sin(r[B]); NEXT;
+  CASE(Cos) r[A] = std::cos(r[B]); NEXT;
+  CASE(Tan) r[A] = std::tan(r[B]); NEXT;
+  CASE(Atan2) r[A] = std::atan2(r[B], r[C]) * 180 / std::numbers::pi; NEXT;
+  CASE(Incr) r[A] += 1; NEXT;
+  CASE(Jmp) JUMP(B); NEXT;
+  CASE(Jt) if (r[A] != 0) JUMP(B); NEXT;
+  CASE(Jf) if (r[A] == 0) JUMP(B); NEXT;
+
+#define TRANCHE_FUSED_CASES(Cmp, op)                   \
+  CASE(J##Cmp##FK) if (F[B] op K[C]) JUMP(D); NEXT;     \
+  CASE(Jn##Cmp##FK) if (!(F[B] op K[C])) JUMP(D); NEXT; \
+  CASE(J##Cmp##RK) if (r[A] op K[B]) JUMP(C); NEXT;     \
+  CASE(Jn##Cmp##RK) if (!(r[A] op K[B])) JUMP(C); NEXT; \
+  CASE(J##Cmp##RR) if (r[A] op r[B]) JUMP(C); NEXT;     \
+  CASE(Jn##Cmp##RR) if (!(r[A] op r[B])) JUMP(C); NEXT;
+  TRANCHE_FUSED_CASES(Eq, ==)
+  TRANCHE_FUSED_CASES(Ne, !=)
+  TRANCHE_FUSED_CASES(Lt, <)
+  TRANCHE_FUSED_CASES(Le, <=)
+  TRANCHE_FUSED_CASES(Gt, >)
+  TRANCHE_FUSED_CASES(Ge, >=)
+#undef TRANCHE_FUSED_CASES
+
+  CASE(Ret) result = r[A]; return true;
+  CASE(RetK) result = K[B]; return true;
+  CASE(Halt) result = 0; return true;
+
+  CASE(TLit) {
+    st_.text += p_.strings[B];
+    if (st_.text.size() > kMaxTextBytes) return fault(Fault::TextTooLong, ci, pc());
+    NEXT;
+  }
+  CASE(TNum) {
+    if (!std::isfinite(r[A])) return fault(Fault::NotFinite, ci, pc());
+    st_.text += format_number(r[A], B);
+    if (st_.text.size() > kMaxTextBytes) return fault(Fault::TextTooLong, ci, pc());
+    NEXT;
+  }
+  CASE(TInt) {
+    if (!std::isfinite(r[A])) return fault(Fault::NotFinite, ci, pc());
+    st_.text += format_number(std::trunc(r[A]), 0);
+    if (st_.text.size() > kMaxTextBytes) return fault(Fault::TextTooLong, ci, pc());
+    NEXT;
+  }
+  CASE(TBool) st_.text += r[A] != 0 ? '1' : '0'; NEXT;
+  CASE(TEnum) {
+    double v = r[A];
+    const auto& info = schema::enums()[B];
+    st_.text += v >= 0 && v < static_cast<double>(info.values.size()) ? info.values[static_cast<size_t>(v)]
+                                                                       : std::string_view("?");
+    if (st_.text.size() > kMaxTextBytes) return fault(Fault::TextTooLong, ci, pc());
+    NEXT;
+  }
+  CASE(Gcode) if (!emit(false, ci, pc())) return false; NEXT;
+  CASE(Comment) if (!emit(true, ci, pc())) return false; NEXT;
+
+  CASE(MoveTo) {
+    if (!std::isfinite(r[A]) || !std::isfinite(r[B])) return fault(Fault::NotFinite, ci, pc());
+    ctx::MoveOptions o;
+    o.travel = (C & kMoveTravel) != 0;
+    uint16_t k = D;
+    auto opt = [&](uint16_t flag, std::optional<double>& v, schema::PropId q) {
+      if (!(C & flag)) return true;
+      auto checked = RuleSet::check_value(q, r[k++]);
+      if (!checked) return false;
+      v = *checked;
+      return true;
+    };
+    if (!opt(kMoveSpeed, o.speed, schema::PropId::Speed) || !opt(kMoveFlow, o.flow, schema::PropId::Flow) ||
+        !opt(kMoveWidth, o.width, schema::PropId::Width))
+      return fault(Fault::NotFinite, ci, pc());
+    emitted_ += 40;
+    if (emitted_ > kMaxOutputBytes) return fault(Fault::OutputTooLong, ci, pc());
+    if (api) api->move_to(r[A], r[B], o);
+    NEXT;
+  }
+  CASE(Default) {
+    if (api)
+      if (Status s = api->emit_default(); !s) {
+        fail_api(s.error());
+        fault_chunk_ = ci;
+        fault_pc_ = pc();
+        return false;
+      }
+    NEXT;
+  }
+  CASE(Offset) {
+    if (!std::isfinite(r[A])) return fault(Fault::NotFinite, ci, pc());
+    if (api)
+      if (Status s = api->offset(r[A]); !s) {
+        fail_api(s.error());
+        fault_chunk_ = ci;
+        fault_pc_ = pc();
+        return false;
+      }
+    NEXT;
+  }
+  CASE(Reverse) {
+    if (api)
+      if (Status s = api->reverse(); !s) {
+        fail_api(s.error());
+        fault_chunk_ = ci;
+        fault_pc_ = pc();
+        return false;
+      }
+    NEXT;
+  }
+
+#ifndef TRANCHE_COMPUTED_GOTO
+      default:
+        return fault(Fault::Api, ci, pc());
+    }
+  }
+#endif
+#undef A
+#undef B
+#undef C
+#undef D
+#undef JUMP
+#undef CASE
+#undef NEXT
+}
+
+Error Machine::error() const {
+  std::string what;
+  switch (fault_) {
+    case Fault::None: what = "no error"; break;
+    case Fault::DivZero: what = "division by zero"; break;
+    case Fault::ModZero: what = "remainder of a division by zero"; break;
+    case Fault::SqrtNeg: what = "square root of a negative number"; break;
+    case Fault::NotFinite: what = "a value that is not a finite number, or outside its range, was computed"; break;
+    case Fault::TextTooLong: what = fmt::format("a template produced more than {} characters", kMaxTextBytes); break;
+    case Fault::OutputTooLong:
+      what = fmt::format("one element's G-code grew beyond {} MiB", kMaxOutputBytes >> 20);
+      break;
+    case Fault::Steps: what = fmt::format("loops ran more than {} steps for one element", kMaxLoopSteps); break;
+    case Fault::Depth:
+      what = "properties read their own earlier values too deeply (or rules nest too many registers)";
+      break;
+    case Fault::Api: what = api_error_.message; break;
+  }
+  std::string where;
+  const Debug& d = p_.debug;
+  uint32_t instr = p_.chunks[fault_chunk_].start + fault_pc_;
+  if (!d.empty() && instr < d.instr_loc.size()) {
+    const Loc& l = d.locs[d.instr_loc[instr]];
+    if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
+  }
+  std::string rule = rule_ != UINT32_MAX ? rs_.rule_name(rule_) : std::string("a rule");
+  if (where.empty() && rule_ != UINT32_MAX) where = rs_.rule_where(rule_);
+  std::string help;
+  if (fault_ == Fault::DivZero || fault_ == Fault::ModZero)
+    help = "; guard it in the filter or with `if`, e.g. `below.area > 0 and ...`";
+  else if (fault_ == Fault::SqrtNeg)
+    help = "; take `sqrt(max(x, 0))` or guard it with `if`";
+  return Error{where.empty() ? std::string("rules") : where, fmt::format("in {}: {}{}", rule, what, help)};
+}
+
+namespace {
+std::atomic<uint32_t> next_uid{1};
+}
+
+RuleSet::RuleSet(Program p) : program_(std::move(p)), uid_(next_uid.fetch_add(1)) {}
+
+Result<std::shared_ptr<const RuleSet>> RuleSet::create(Program program) {
+  if (Status s = verify(program); !s) return s.error();
+  std::shared_ptr<RuleSet> rs(new RuleSet(std::move(program)));
+  rs->analyse();
+  return std::shared_ptr<const RuleSet>(std::move(rs));
+}
+
+void RuleSet::analyse() {
+  const Program& p = program_;
+  // Per chunk: the innermost level it reads and whether it reads only fields.
+  std::vector<Level> chunk_level(p.chunks.size(), Level::Print);
+  std::vector<uint8_t> pure(p.chunks.size(), 1);
+  for (size_t c = 0; c < p.chunks.size(); ++c) {
+    const Chunk& ch = p.chunks[c];
+    Level lv = Level::Print;
+    for (uint32_t i = 0; i < ch.size; ++i) {
+      const Instr& in = p.code[ch.start + i];
+      const OpInfo& info = op_info(in.code());
+      auto field = [&](uint16_t f) {
+        reads_[f] = true;
+        lv = std::max(lv, schema::fields()[f].level);
+      };
+      if (info.b == Operand::Field) field(in.b);
+      if (info.c == Operand::Field) field(in.c);
+      switch (in.code()) {
+        case Op::Prop:
+        case Op::Inherit:
+          pure[c] = 0;
+          lv = std::max(lv, schema::stage_level(schema::property(static_cast<schema::PropId>(in.b)).stage));
+          break;
+        case Op::Layer:
+        case Op::LayerRel:
+          lv = std::max(lv, Level::Layer);
+          break;
+        case Op::Count:
+        case Op::Elem: {
+          pure[c] = 0;
+          auto coll = static_cast<Coll>(in.code() == Op::Count ? in.b : in.c);
+          lv = std::max(lv, coll == Coll::Islands ? Level::Layer : Level::Path);
+          if (in.code() == Op::Elem && coll != Coll::Points) reads_[in.d] = true;
+          break;
+        }
+        default:
+          break;
+      }
+    }
+    chunk_level[c] = lv;
+  }
+  hoistable_.assign(p.conjuncts.size(), 0);
+  for (size_t k = 0; k < p.conjuncts.size(); ++k) hoistable_[k] = pure[p.conjuncts[k].chunk];
+  auto rule_level = [&](uint32_t r) {
+    Level lv = Level::Print;
+    for (uint32_t k = p.rules[r].first; k < p.rules[r].first + p.rules[r].count; ++k)
+      lv = std::max(lv, std::max(p.conjuncts[k].level, chunk_level[p.conjuncts[k].chunk]));
+    return lv;
+  };
+  varies_.fill(Level::Print);
+  for (auto q : p.property_order) {
+    const auto& cands = p.props[static_cast<size_t>(q)];
+    if (cands.empty()) continue;
+    auto st = schema::property(q).stage;
+    stage_props_[static_cast<size_t>(st)].push_back(q);
+    Level& v = varies_[static_cast<size_t>(st)];
+    for (const auto& c : cands) v = std::max(v, std::max(rule_level(c.rule), chunk_level[c.chunk]));
+  }
+}
+
+Result<double> RuleSet::check_value(schema::PropId q, double v) {
+  const auto& info = schema::property(q);
+  if (!std::isfinite(v)) return Error{"", fmt::format("`{}` was given a value that is not a number", info.name)};
+  switch (info.type) {
+    case schema::Type::Bool:
+      return v != 0 ? 1.0 : 0.0;
+    case schema::Type::Enum:
+      if (v < 0 || v >= static_cast<double>(schema::enum_info(info.enum_type).values.size()) || v != std::floor(v))
+        return Error{"", fmt::format("`{}` was given {}, which is not one of its values", info.name, v)};
+      return v;
+    default:
+      break;
+  }
+  if (info.unit == schema::Unit::Deg) {
+    v = std::fmod(v, 360.0);
+    if (v < 0) v += 360.0;
+    return v;
+  }
+  if (v < info.min || v > info.max) {
+    auto show = [&](double x) {
+      if (info.unit == schema::Unit::Ratio) return fmt::format("{:g}%", x * 100);
+      auto u = schema::unit_name(info.unit);
+      return u.empty() ? fmt::format("{:g}", x) : fmt::format("{:g} {}", x, u);
+    };
+    return Error{"", fmt::format("`{}` was given {}, outside its physical range {} to {}", info.name, show(v),
+                                 show(info.min), show(info.max))};
+  }
+  if (info.type == schema::Type::Int) v = std::round(v);
+  return v;
+}
+
+std::string RuleSet::rule_name(uint32_t r) const {
+  if (r < program_.debug.rule_names.size()) return "rule " + program_.debug.rule_names[r];
+  return fmt::format("rule {}", r);
+}
+
+std::string RuleSet::rule_where(uint32_t r) const {
+  const Debug& d = program_.debug;
+  if (r >= d.rule_loc.size()) return {};
+  const Loc& l = d.locs[d.rule_loc[r]];
+  if (l.line == 0) return d.files[l.file];
+  return fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
+}
+
+Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {
+  const auto& list = stage_props_[static_cast<size_t>(stage)];
+  if (list.empty()) return ok_status();
+  for (auto q : list) props.base[static_cast<size_t>(q)] = props[q];
+  Machine m(*this, c, &props);
+  m.level = schema::stage_level(stage);
+  if (stage == Stage::Piece) m.level = Level::Piece;
+  for (auto q : list) {
+    const Candidates& cands = program_.props[static_cast<size_t>(q)];
+    for (const auto& cand : cands) {
+      bool ok;
+      if (!m.test(cand.rule, ok)) return m.error();
+      if (!ok) continue;
+      double v;
+      m.rule_ = cand.rule;
+      if (!m.exec(cand.chunk, v)) return m.error();
+      auto checked = check_value(q, v);
+      if (!checked) {
+        std::string where = rule_where(cand.rule);
+        const Debug& d = program_.debug;
+        const Chunk& ch = program_.chunks[cand.chunk];
+        if (!d.empty() && ch.start < d.instr_loc.size()) {
+          const Loc& l = d.locs[d.instr_loc[ch.start]];
+          if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
+        }
+        return Error{where.empty() ? "rules" : where,
+                     fmt::format("in {}: {}", rule_name(cand.rule), checked.error().message)};
+      }
+      props[q] = *checked;
+      m.rule_ = UINT32_MAX;
+      break;
+    }
+  }
+  return ok_status();
+}
+
+bool RuleSet::has(Level level, ctx::When when) const {
+  return !program_.hooks[static_cast<size_t>(level)][when == ctx::When::Before ? 0 : 1].empty();
+}
+
+bool RuleSet::has(Level level) const { return !program_.replace[static_cast<size_t>(level)].empty(); }
+
+Status RuleSet::run(Level level, ctx::When when, const ctx::Context& c, ctx::LineSink& out) const {
+  const Candidates& cands = program_.hooks[static_cast<size_t>(level)][when == ctx::When::Before ? 0 : 1];
+  if (cands.empty()) return ok_status();
+  Machine m(*this, c, &c.props());
+  m.level = level;
+  m.out = &out;
+  // The last matching executor decides the hook; the `append` ones after it add to it.
+  const Candidate* base = nullptr;
+  std::vector<const Candidate*> appends;
+  for (const auto& cand : cands) {
+    bool ok;
+    if (!m.test(cand.rule, ok)) return m.error();
+    if (!ok) continue;
+    if (cand.append) {
+      appends.push_back(&cand);
+      continue;
+    }
+    base = &cand;
+    break;
+  }
+  state().text.clear();
+  auto body = [&](const Candidate* cand) -> Status {
+    double unused;
+    m.rule_ = cand->rule;
+    if (!m.exec(cand->chunk, unused)) return m.error();
+    return ok_status();
+  };
+  if (base)
+    if (Status s = body(base); !s) return s;
+  for (auto it = appends.rbegin(); it != appends.rend(); ++it)
+    if (Status s = body(*it); !s) return s;
+  return ok_status();
+}
+
+Result<bool> RuleSet::replace(Level level, const ctx::Context& c, ctx::ReplaceApi& api) const {
+  const Candidates& cands = program_.replace[static_cast<size_t>(level)];
+  if (cands.empty()) return false;
+  Machine m(*this, c, &c.props());
+  m.level = level;
+  m.api = &api;
+  for (const auto& cand : cands) {
+    bool ok;
+    if (!m.test(cand.rule, ok)) return m.error();
+    if (!ok) continue;
+    state().text.clear();
+    double unused;
+    m.rule_ = cand.rule;
+    if (!m.exec(cand.chunk, unused)) return m.error();
+    return true;
+  }
+  return false;
+}
+
+Result<double> RuleSet::evaluate(uint32_t chunk, const ctx::Context& c, const ctx::PropertyValues& props) const {
+  if (chunk >= program_.chunks.size()) return Error{"rules", "no such chunk"};
+  auto kind = program_.chunks[chunk].kind;
+  if (kind != ChunkKind::Test && kind != ChunkKind::Value) return Error{"rules", "only tests and values evaluate"};
+  Machine m(*this, c, &props);
+  m.level = Level::Print;  // keep nothing: explain evaluates each part on its own
+  double v;
+  if (!m.exec(chunk, v)) return m.error();
+  return v;
+}
+
+Result<int> RuleSet::first_match(const Candidates& cands, const ctx::Context& c,
+                                 const ctx::PropertyValues& props) const {
+  Machine m(*this, c, &props);
+  m.level = Level::Print;
+  for (size_t i = 0; i < cands.size(); ++i) {
+    bool ok;
+    if (!m.test(cands[i].rule, ok)) return m.error();
+    if (ok) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+}  // namespace tranche::vm

@@ -1,0 +1,92 @@
+// The rule VM: a verified Program run inside the slicing loop. One RuleSet is the user's rules
+// (every `--rules` file, linked in cascade order, and `--set` expressions); the loop consults it
+// through the three interfaces of runtime/context/hooks.h:
+//   Decider    for each property of a stage, the first candidate (last rule) whose filter holds
+//              decides its value; a property read inside its own rule is resolved from the
+//              candidates below that rule, down to the value the cascade gives below the rules
+//   Executors  for a hook, the last matching executor, then every matching `append` one after it
+//   Replacers  for an island or a path, the last matching replacer runs instead of the default
+//
+// Hoisting: a conjunct that reads only fields of a level outer to the decision (a layer-level
+// test inside a per-piece decision) is evaluated once per element of its level and thread, and
+// its result kept for as long as Context::generation of its level stays the same.
+//
+// Thread safety: a RuleSet is immutable once created; every call keeps its state on the
+// calling thread (registers, text buffer, the kept conjunct results), so layers run in parallel.
+//
+// Run-time errors (division by zero, a square root of a negative number, a value that is not a
+// number or outside the property's physical range, a template or output too long, too many loop
+// steps) stop the slice: the Error names the rule and, with debug information, file:line:col.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "runtime/base/result.h"
+#include "runtime/context/hooks.h"
+#include "runtime/vm/program.h"
+
+namespace tranche::vm {
+
+// Bounds on what one call may do (each is a run-time error when exceeded).
+inline constexpr uint64_t kMaxLoopSteps = 20'000'000;  // loop iterations per hook or replacer run
+inline constexpr size_t kMaxTextBytes = 64 * 1024;     // one `gcode`/`comment` template's text
+inline constexpr size_t kMaxOutputBytes = 64u << 20;   // everything one hook or replacer run emits
+inline constexpr int kMaxInheritDepth = 1000;          // nested "value of the rules before"
+
+class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Replacers {
+ public:
+  // Verifies the program (see verify.h) and prepares it to run.
+  static Result<std::shared_ptr<const RuleSet>> create(Program program);
+
+  const Program& program() const { return program_; }
+
+  // ctx::Decider
+  Status decide(schema::Stage stage, const ctx::Context& ctx, ctx::PropertyValues& props) const override;
+  schema::Level varies_at(schema::Stage stage) const override { return varies_[static_cast<size_t>(stage)]; }
+  // Decider, Executors and Replacers: whether any code reads the field.
+  bool reads(schema::FieldId field) const override { return reads_[static_cast<size_t>(field)]; }
+  // ctx::Executors
+  bool has(schema::Level level, ctx::When when) const override;
+  Status run(schema::Level level, ctx::When when, const ctx::Context& ctx, ctx::LineSink& out) const override;
+  // ctx::Replacers
+  bool has(schema::Level level) const override;
+  Result<bool> replace(schema::Level level, const ctx::Context& ctx, ctx::ReplaceApi& api) const override;
+
+  // For `rulec explain` and tests.
+  // Runs a Test or Value chunk in the context (props: the element's properties).
+  Result<double> evaluate(uint32_t chunk, const ctx::Context& ctx, const ctx::PropertyValues& props) const;
+  // Whether the slot `cands` has a property candidate, hook or replacer matching in ctx: the
+  // index in `cands` of the deciding candidate, or -1.
+  Result<int> first_match(const Candidates& cands, const ctx::Context& ctx, const ctx::PropertyValues& props) const;
+  // "rule \"name\"" (or "rule 3" without debug information) and "file:line:col" ("" without).
+  std::string rule_name(uint32_t rule) const;
+  std::string rule_where(uint32_t rule) const;
+
+  // Every property's value check: a finite number within the physical range (angles are
+  // brought into [0, 360)). Returns the value to store, or an explanation of what is wrong.
+  static Result<double> check_value(schema::PropId prop, double value);
+
+ private:
+  explicit RuleSet(Program p);
+  void analyse();
+  friend class Machine;
+
+  Program program_;
+  uint32_t uid_ = 0;
+  std::array<bool, schema::kFieldCount> reads_{};
+  std::array<schema::Level, schema::kStageCount> varies_{};
+  std::array<std::vector<schema::PropId>, schema::kStageCount> stage_props_;  // with candidates, in order
+  std::vector<uint8_t> hoistable_;  // per conjunct: reads fields only (no properties, no collections)
+};
+
+// Counters of the calling thread, for tests of hoisting (never reset by the VM).
+struct Counters {
+  uint64_t conjuncts_run = 0;   // conjunct chunks executed
+  uint64_t conjuncts_kept = 0;  // conjunct results reused from an earlier evaluation
+};
+Counters& thread_counters();
+
+}  // namespace tranche::vm
