@@ -1,149 +1,305 @@
-// rulec: the rule compiler's command line. `check` is here; build, disasm and explain come
-// with code generation.
+// rulec: the rule compiler's command line: check, build, disasm, explain.
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "compiler/ast/ast.h"
 #include "compiler/check.h"
+#include "compiler/codegen.h"
 #include "compiler/diagnostics.h"
+#include "compiler/explain.h"
 #include "compiler/frontend.h"
+#include "runtime/vm/bundle.h"
+#include "runtime/vm/verify.h"
+#include "runtime/vm/vm.h"
 
 namespace {
 
 constexpr const char* kUsage =
     "usage: rulec check [options] FILE...\n"
+    "       rulec build [options] FILE... -o OUT.bundle [--no-debug]\n"
+    "       rulec disasm FILE.bundle|FILE.rules...\n"
+    "       rulec explain [options] FILE... --at \"layer.index=3, path.kind=outer_perimeter\"\n"
     "\n"
-    "Checks .rules files: syntax, names, types and units, stages, lints.\n"
+    "check    checks .rules files: syntax, names, types and units, stages, lints\n"
+    "build    checks, then compiles the files (in cascade order) into one bundle for\n"
+    "         `tranche slice --rules OUT.bundle`\n"
+    "disasm   prints a bundle's (or compiled rules') tables and bytecode\n"
+    "explain  for one context, says which rule decides each slot and why later rules do not match\n"
+    "\n"
     "Exit status: 0 no errors (warnings allowed), 1 errors, 2 usage error.\n"
     "\n"
     "options:\n"
     "  --format text|json     diagnostics for people (stderr) or one JSON object per line (stdout)\n"
     "  --stdlib DIR           where `use \"printers/...\"` looks first\n"
-    "  --set KEY=VALUE        check a command-line override too (an implicit last rule)\n"
+    "  --set KEY=VALUE        a command-line override too (an implicit last rule)\n"
     "  -W error, --deny-warnings\n"
     "                         treat warnings as errors\n"
     "  --allow CODE           do not report warning CODE (e.g. --allow W201)\n"
     "  --color auto|always|never\n"
-    "  --dump-ast             print the checked AST (for developers)\n"
+    "  -o, --output FILE      (build) the bundle to write\n"
+    "  --no-debug             (build) leave out the debug section (file:line:col of the code)\n"
+    "  --at FIELD=VALUE,...   (explain) the context: fields (`island.area=3mm2`), and properties as\n"
+    "                         the lower layers of the cascade give them (`speed=60`)\n"
+    "  --dump-ast             (check) print the checked AST\n"
     "  --time                 print the time of each phase on stderr\n"
     "  -h, --help             this text\n"
     "\n"
-    "Diagnostic codes are explained in docs/diagnostics.md.\n";
+    "Diagnostic codes are explained in docs/diagnostics.md; the bundle format in docs/bundles.md.\n";
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "rulec: %s\n\n%s", message.c_str(), kUsage);
   return 2;
 }
 
-int check(int argc, char** argv) {
-  using namespace tranche;
-  compiler::FrontendOptions options;
-  options.exe_path = argv[0];
-  diag::Policy policy;
+struct Args {
+  std::string command;
+  tranche::compiler::FrontendOptions options;
+  tranche::diag::Policy policy;
   std::vector<std::string> files;
   std::vector<std::pair<std::string, std::string>> sets;
-  std::string format = "text", color = "auto";
-  bool dump = false, timing = false;
+  std::string format = "text", color = "auto", output, at;
+  bool dump = false, timing = false, debug = true, has_at = false;
+};
+
+// Parses the options shared by every command; returns an exit code for usage errors.
+int parse(int argc, char** argv, Args& a) {
+  a.command = argv[1];
+  a.options.exe_path = argv[0];
   for (int i = 2; i < argc; ++i) {
-    std::string_view a = argv[i];
-    auto value = [&](std::string_view flag) -> const char* {
-      if (i + 1 >= argc) return nullptr;
-      (void)flag;
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") {
+    std::string_view s = argv[i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    if (s == "-h" || s == "--help") {
       std::fputs(kUsage, stdout);
       return 0;
-    } else if (a == "--format") {
-      const char* v = value(a);
+    } else if (s == "--format") {
+      const char* v = value();
       if (!v || (std::string_view(v) != "text" && std::string_view(v) != "json"))
         return usage_error("--format takes `text` or `json`");
-      format = v;
-    } else if (a == "--stdlib") {
-      const char* v = value(a);
+      a.format = v;
+    } else if (s == "--stdlib") {
+      const char* v = value();
       if (!v) return usage_error("--stdlib needs a directory");
-      options.stdlib_dir = v;
-    } else if (a == "--set") {
-      const char* v = value(a);
+      a.options.stdlib_dir = v;
+    } else if (s == "--set") {
+      const char* v = value();
       std::string_view kv = v ? v : "";
       size_t eq = kv.find('=');
-      if (!v || eq == std::string_view::npos || eq == 0)
-        return usage_error("--set takes KEY=VALUE, e.g. --set speed=40");
-      sets.emplace_back(std::string(kv.substr(0, eq)), std::string(kv.substr(eq + 1)));
-    } else if (a == "-W") {
-      const char* v = value(a);
+      if (!v || eq == std::string_view::npos || eq == 0) return usage_error("--set takes KEY=VALUE, e.g. --set speed=40");
+      a.sets.emplace_back(std::string(kv.substr(0, eq)), std::string(kv.substr(eq + 1)));
+    } else if (s == "-W") {
+      const char* v = value();
       if (!v || std::string_view(v) != "error") return usage_error("-W takes `error`");
-      policy.deny_warnings = true;
-    } else if (a == "-Werror" || a == "--deny-warnings") {
-      policy.deny_warnings = true;
-    } else if (a == "--allow") {
-      const char* v = value(a);
+      a.policy.deny_warnings = true;
+    } else if (s == "-Werror" || s == "--deny-warnings") {
+      a.policy.deny_warnings = true;
+    } else if (s == "--allow") {
+      const char* v = value();
       if (!v || v[0] != 'W') return usage_error("--allow takes a warning code, e.g. --allow W201");
-      policy.allowed.insert(v);
-    } else if (a == "--color") {
-      const char* v = value(a);
+      a.policy.allowed.insert(v);
+    } else if (s == "--color") {
+      const char* v = value();
       std::string_view c = v ? v : "";
-      if (c != "auto" && c != "always" && c != "never")
-        return usage_error("--color takes auto, always or never");
-      color = c;
-    } else if (a == "--dump-ast") {
-      dump = true;
-    } else if (a == "--time") {
-      timing = true;
-    } else if (a.starts_with("-") && a != "-") {
-      return usage_error(std::string("unknown option `").append(a).append("`"));
+      if (c != "auto" && c != "always" && c != "never") return usage_error("--color takes auto, always or never");
+      a.color = c;
+    } else if (s == "-o" || s == "--output") {
+      const char* v = value();
+      if (!v) return usage_error("-o needs a file name");
+      a.output = v;
+    } else if (s == "--no-debug") {
+      a.debug = false;
+    } else if (s == "--at") {
+      const char* v = value();
+      if (!v) return usage_error("--at needs a context, e.g. --at \"layer.index=3, path.kind=infill\"");
+      a.at = v;
+      a.has_at = true;
+    } else if (s == "--dump-ast") {
+      a.dump = true;
+    } else if (s == "--time") {
+      a.timing = true;
+    } else if (s.starts_with("-") && s != "-") {
+      return usage_error(std::string("unknown option `").append(s).append("`"));
     } else {
-      files.emplace_back(a);
+      a.files.emplace_back(s);
     }
   }
-  if (files.empty()) return usage_error("no input files");
+  if (a.files.empty()) return usage_error("no input files");
+  return -1;
+}
 
-  // The phases of compiler::compile(), timed one by one for --time.
-  diag::Sink sink;
-  ast::Program program;
-  using Clock = std::chrono::steady_clock;
+std::optional<std::string> read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Loads, checks and lints; prints the diagnostics. Returns whether there were no errors.
+struct Front {
+  tranche::diag::Sink sink;
+  tranche::ast::Program program;
   std::vector<std::pair<const char*, double>> times;
+};
+
+bool front(const Args& a, Front& f) {
+  using namespace tranche;
+  using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
   auto lap = [&](const char* phase) {
     auto t = Clock::now();
-    times.emplace_back(phase, std::chrono::duration<double, std::milli>(t - t0).count());
+    f.times.emplace_back(phase, std::chrono::duration<double, std::milli>(t - t0).count());
     t0 = t;
   };
-  for (const auto& f : files) compiler::load_file(program, f, options, sink);
-  for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
+  for (const auto& file : a.files) compiler::load_file(f.program, file, a.options, f.sink);
+  for (const auto& [k, v] : a.sets) compiler::add_set(f.program, k, v, f.sink);
   lap("read and parse");
-  bool ok = compiler::check(program, sink) && !sink.has_errors();
+  bool ok = compiler::check(f.program, f.sink) && !f.sink.has_errors();
   lap("check");
-  if (ok) compiler::lint(program, sink);
+  if (ok) compiler::lint(f.program, f.sink);
   lap("lint");
-  sink.finish(policy);
-
-  bool use_color =
-      color == "always" || (color == "auto" && isatty(2) && std::getenv("NO_COLOR") == nullptr &&
-                            std::string_view(std::getenv("TERM") ? std::getenv("TERM") : "dumb") != "dumb");
-  for (const auto& d : sink.all()) {
-    if (format == "json") {
-      std::printf("%s\n", compiler::render_json(program.sources, d).c_str());
-    } else {
-      std::fprintf(stderr, "%s\n", compiler::render_text(program.sources, d, use_color).c_str());
-    }
+  f.sink.finish(a.policy);
+  bool use_color = a.color == "always" ||
+                   (a.color == "auto" && isatty(2) && std::getenv("NO_COLOR") == nullptr &&
+                    std::string_view(std::getenv("TERM") ? std::getenv("TERM") : "dumb") != "dumb");
+  for (const auto& d : f.sink.all()) {
+    if (a.format == "json")
+      std::printf("%s\n", compiler::render_json(f.program.sources, d).c_str());
+    else
+      std::fprintf(stderr, "%s\n", compiler::render_text(f.program.sources, d, use_color).c_str());
   }
   lap("report");
-  if (dump && program.checked) std::fputs(ast::dump(program).c_str(), stdout);
-  if (timing)
-    for (const auto& [phase, ms] : times) std::fprintf(stderr, "rulec: %-15s %8.1f ms\n", phase, ms);
-  if (format == "text") {
-    std::fprintf(stderr, "rulec: %zu rule%s checked: %s\n", program.cascade.size(),
-                 program.cascade.size() == 1 ? "" : "s",
-                 compiler::summary(sink.errors(), sink.warnings()).c_str());
+  return !f.sink.has_errors();
+}
+
+void print_times(const Args& a, const Front& f) {
+  if (a.timing)
+    for (const auto& [phase, ms] : f.times) std::fprintf(stderr, "rulec: %-15s %8.1f ms\n", phase, ms);
+}
+
+int check(const Args& a) {
+  using namespace tranche;
+  Front f;
+  bool ok = front(a, f);
+  if (a.dump && f.program.checked) std::fputs(ast::dump(f.program).c_str(), stdout);
+  print_times(a, f);
+  if (a.format == "text")
+    std::fprintf(stderr, "rulec: %zu rule%s checked: %s\n", f.program.cascade.size(),
+                 f.program.cascade.size() == 1 ? "" : "s", compiler::summary(f.sink.errors(), f.sink.warnings()).c_str());
+  return ok ? 0 : 1;
+}
+
+int build(const Args& a) {
+  using namespace tranche;
+  if (a.output.empty()) return usage_error("build needs an output: -o FILE.bundle");
+  Front f;
+  if (!front(a, f)) {
+    std::fprintf(stderr, "rulec: %s; no bundle written\n", compiler::summary(f.sink.errors(), f.sink.warnings()).c_str());
+    return 1;
   }
-  return sink.has_errors() ? 1 : 0;
+  compiler::CodegenOptions o;
+  o.debug = a.debug;
+  auto p = compiler::generate(f.program, o);
+  if (!p) {
+    std::fprintf(stderr, "rulec: error: %s\n", p.error().to_string().c_str());
+    return 1;
+  }
+  std::string bytes = vm::write_bundle(*p, a.debug);
+  // Written next to the target, then renamed: never a half-written bundle.
+  namespace fs = std::filesystem;
+  fs::path out(a.output), tmp = out;
+  tmp += ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+    if (!file || !file.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) || !file.flush()) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      std::fprintf(stderr, "rulec: error: cannot write %s\n", a.output.c_str());
+      return 1;
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, out, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    std::fprintf(stderr, "rulec: error: cannot write %s: %s\n", a.output.c_str(), ec.message().c_str());
+    return 1;
+  }
+  print_times(a, f);
+  std::fprintf(stderr, "rulec: %zu rule%s, %zu instructions, %zu bytes -> %s%s\n", p->rules.size(),
+               p->rules.size() == 1 ? "" : "s", p->code.size(), bytes.size(), a.output.c_str(),
+               f.sink.warnings() ? (" (" + compiler::summary(0, f.sink.warnings()) + ")").c_str() : "");
+  return 0;
+}
+
+int disasm(const Args& a) {
+  using namespace tranche;
+  int status = 0;
+  for (const auto& file : a.files) {
+    auto bytes = read_all(file);
+    if (!bytes) {
+      std::fprintf(stderr, "rulec: error: %s: cannot read this file\n", file.c_str());
+      status = 1;
+      continue;
+    }
+    if (!vm::looks_like_bundle(*bytes)) {
+      Args one = a;
+      one.files = {file};
+      Front f;
+      if (!front(one, f)) {
+        status = 1;
+        continue;
+      }
+      auto p = compiler::generate(f.program);
+      if (!p) {
+        std::fprintf(stderr, "rulec: error: %s\n", p.error().to_string().c_str());
+        status = 1;
+        continue;
+      }
+      std::printf("; %s (compiled)\n%s", file.c_str(), vm::disassemble(*p).c_str());
+      continue;
+    }
+    auto p = vm::read_bundle(*bytes, file);
+    if (!p) {
+      std::fprintf(stderr, "rulec: error: %s\n", p.error().to_string().c_str());
+      status = 1;
+      continue;
+    }
+    std::printf("; %s\n%s", file.c_str(), vm::disassemble(*p).c_str());
+  }
+  return status;
+}
+
+int explain(const Args& a) {
+  using namespace tranche;
+  if (!a.has_at) return usage_error("explain needs a context: --at \"layer.index=3, path.kind=infill\"");
+  Front f;
+  if (!front(a, f)) return 1;
+  auto p = compiler::generate(f.program);
+  if (!p) {
+    std::fprintf(stderr, "rulec: error: %s\n", p.error().to_string().c_str());
+    return 1;
+  }
+  auto rs = vm::RuleSet::create(std::move(*p));
+  if (!rs) {
+    std::fprintf(stderr, "rulec: error: %s\n", rs.error().to_string().c_str());
+    return 1;
+  }
+  auto text = compiler::explain(f.program, **rs, a.at);
+  if (!text) {
+    std::fprintf(stderr, "rulec: error: %s\n", text.error().to_string().c_str());
+    return 1;
+  }
+  std::fputs(text->c_str(), stdout);
+  return 0;
 }
 
 }  // namespace
@@ -155,10 +311,12 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  if (cmd == "check") return check(argc, argv);
-  if (cmd == "build" || cmd == "disasm" || cmd == "explain") {
-    std::fprintf(stderr, "rulec: `%s` is not available in this build yet\n", argv[1]);
-    return 2;
-  }
-  return usage_error(std::string("unknown command `").append(cmd).append("`"));
+  if (cmd != "check" && cmd != "build" && cmd != "disasm" && cmd != "explain")
+    return usage_error(std::string("unknown command `").append(cmd).append("`"));
+  Args a;
+  if (int rc = parse(argc, argv, a); rc >= 0) return rc;
+  if (cmd == "check") return check(a);
+  if (cmd == "build") return build(a);
+  if (cmd == "disasm") return disasm(a);
+  return explain(a);
 }

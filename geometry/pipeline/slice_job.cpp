@@ -18,7 +18,9 @@
 #include "geometry/slice/layer_plan.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
+#include "geometry/pipeline/load_rules.h"
 #include "runtime/context/cascade.h"
+#include "runtime/context/overrides.h"
 
 namespace tranche::pipeline {
 namespace {
@@ -31,8 +33,6 @@ bool ends_with_svg(const std::string& path) {
 
 // Options that later stages will honour; until then the user hears that they were ignored.
 void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
-  if (!o.rules.empty())
-    report.warn("not-implemented", "", "--rules are not applied yet (--set is): the rule VM is not in this build");
   if (o.overlap == OverlapMode::Subtractive && !svg)
     report.warn("overlap-svg-only", "",
                 "--overlap subtractive applies to SVG drawings only; overlapping shells are united "
@@ -200,7 +200,22 @@ Result<geo::LayerPlanParams> layer_heights(const ctx::Cascade& cascade, const ct
 Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty())
     return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE and/or --export-layers FILE"};
-  auto cascade = ctx::Cascade::create(options.sets);  // a bad --set fails before any work
+  // The user's rules and --set: compiled and checked before any work. A --set whose value is a
+  // plain value (`0.2`, `20%`, `rear`) is an override; one with an expression
+  // (`--set fill_angle="15 deg * layer.index"`) is compiled as an implicit last rule.
+  std::vector<std::pair<std::string, std::string>> plain;
+  RulesInput rules_in;
+  rules_in.files = options.rules;
+  for (const auto& [k, v] : options.sets) {
+    if (!ctx::parse_override(k, v) && schema::find_property(k))
+      rules_in.expressions.emplace_back(k, v);
+    else
+      plain.emplace_back(k, v);
+  }
+  auto rules = load_rules(rules_in, report);
+  if (!rules) return rules.error();
+  const vm::RuleSet* rs = rules->get();
+  auto cascade = ctx::Cascade::create(plain, rs, rs, rs);  // a bad --set fails before any work
   if (!cascade) return cascade.error();
   const bool svg = ends_with_svg(options.model);
   warn_unapplied(options, svg, report);

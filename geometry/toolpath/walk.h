@@ -13,6 +13,19 @@ template <class V>
 void walk_path(const IslandPlan* isl, const PathPlan& p, V& v) {
   v.path_begin(isl, p);
   if (p.replaced) {
+    // A replacer starts where the default would: when its first move extrudes, the nozzle first
+    // travels to the path's start (as for the default), so `for p in path.points { move to ... }`
+    // does not extrude a line from wherever the previous path ended.
+    for (const Op& op : p.ops) {
+      if (op.kind == Op::Kind::Text) continue;
+      if (op.kind == Op::Kind::Extrude && !p.pts.empty()) {
+        Op start;
+        start.kind = Op::Kind::Travel;
+        start.to = p.pts.front();
+        v.op(isl, &p, start);
+      }
+      break;
+    }
     for (const Op& op : p.ops) {
       if (op.kind == Op::Kind::Default)
         v.path_default(isl, p);

@@ -2,13 +2,17 @@
 
 namespace tranche::ctx {
 
-Result<std::unique_ptr<Cascade>> Cascade::create(
-    const std::vector<std::pair<std::string, std::string>>& sets) {
+Result<std::unique_ptr<Cascade>> Cascade::create(const std::vector<std::pair<std::string, std::string>>& sets,
+                                                 const Decider* rules, const Executors* executors,
+                                                 const Replacers* replacers) {
   auto o = Overrides::parse(sets);
   if (!o) return o.error();
   std::unique_ptr<Cascade> c(new Cascade());
   c->overrides_ = std::move(*o);
+  c->chain_.add(rules);
   c->chain_.add(&c->overrides_);
+  c->rules_.executors = executors;
+  c->rules_.replacers = replacers;
   c->rules_.defaults = &c->defaults_;
   c->rules_.decider = &c->chain_;
   return c;

@@ -1,5 +1,4 @@
-// The cascade of one run: schema defaults < built-in defaults < (the user's compiled rules, when
-// the VM exists) < --set. Owns the deciders and hands the loop a `Rules`; also decides the two
+// The cascade of one run: schema defaults < built-in defaults < the user's compiled rules < --set. Owns the deciders and hands the loop a `Rules`; also decides the two
 // things needed before the loop starts: the print stage and each layer's height.
 #pragma once
 
@@ -16,8 +15,12 @@ namespace tranche::ctx {
 class Cascade {
  public:
   // Errors: a --set that names no property or gives a bad value (see parse_override).
-  static Result<std::unique_ptr<Cascade>> create(
-      const std::vector<std::pair<std::string, std::string>>& sets);
+  // `rules` (the compiled user rules, which also execute and replace) comes between the
+  // built-in defaults and the --set overrides; it must outlive the Cascade.
+  static Result<std::unique_ptr<Cascade>> create(const std::vector<std::pair<std::string, std::string>>& sets,
+                                                 const Decider* rules = nullptr,
+                                                 const Executors* executors = nullptr,
+                                                 const Replacers* replacers = nullptr);
 
   const Rules& rules() const { return rules_; }
   const Overrides& overrides() const { return overrides_; }

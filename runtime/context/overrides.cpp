@@ -158,6 +158,43 @@ Result<Override> parse_override(std::string_view key, std::string_view value) {
   return Override{*id, v};
 }
 
+Result<double> parse_field_value(std::string_view name, std::string_view value) {
+  name = trim(name);
+  value = trim(value);
+  auto id = schema::find_field(name);
+  if (!id) {
+    std::string msg = fmt::format("unknown field '{}'", name);
+    if (schema::find_property(name)) msg = fmt::format("'{}' is a property, not a field", name);
+    return Error{std::string(name), msg};
+  }
+  const auto& info = schema::field(*id);
+  if (value.empty()) return Error{std::string(name), "missing value"};
+  if (info.type == Type::Bool) {
+    if (value == "true") return 1.0;
+    if (value == "false") return 0.0;
+    return Error{std::string(name), fmt::format("{} is true or false, not '{}'", name, value)};
+  }
+  if (info.type == Type::Enum) {
+    if (auto v = schema::find_enum_value(info.enum_type, value)) return static_cast<double>(*v);
+    return Error{std::string(name), fmt::format("{} is one of {}, not '{}'", name, enum_list(info.enum_type), value)};
+  }
+  double v = 0;
+  const char* end = value.data() + value.size();
+  auto [ptr, ec] = std::from_chars(value.data(), end, v);
+  if (ec != std::errc() || !std::isfinite(v))
+    return Error{std::string(name), fmt::format("{} needs a number, not '{}'", name, value)};
+  std::string_view unit = trim(std::string_view(ptr, static_cast<size_t>(end - ptr)));
+  if (!unit_matches(info.unit, unit))
+    return Error{std::string(name), fmt::format("{} is in {}; '{}' is not a unit it accepts", name,
+                                                info.unit == Unit::None ? "plain numbers"
+                                                                        : std::string(schema::unit_name(info.unit)),
+                                                unit)};
+  if (unit == "%") v /= 100.0;
+  if (info.type == Type::Int && v != std::floor(v))
+    return Error{std::string(name), fmt::format("{} is a whole number, not {}", name, value)};
+  return v;
+}
+
 Result<Overrides> Overrides::parse(const std::vector<std::pair<std::string, std::string>>& sets) {
   Overrides out;
   for (const auto& [k, v] : sets) {

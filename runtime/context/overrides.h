@@ -21,6 +21,10 @@ struct Override {
 // unknown keys list the close property names; out-of-range values give the range.
 Result<Override> parse_override(std::string_view key, std::string_view value);
 
+// A value for the context field `name` as written on a command line (`rulec explain --at`):
+// a number with an optional unit of the field, an enum value name, or true/false.
+Result<double> parse_field_value(std::string_view name, std::string_view value);
+
 // Property names close to `name` (edit distance, prefix, substring), best first, at most `max`.
 std::vector<std::string_view> close_property_names(std::string_view name, size_t max = 3);
 

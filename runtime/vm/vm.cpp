@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -615,7 +616,11 @@ Result<double> RuleSet::check_value(schema::PropId q, double v) {
 }
 
 std::string RuleSet::rule_name(uint32_t r) const {
-  if (r < program_.debug.rule_names.size()) return "rule " + program_.debug.rule_names[r];
+  if (r < program_.debug.rule_names.size()) {
+    const std::string& n = program_.debug.rule_names[r];
+    if (n.empty()) return fmt::format("rule {}", r);
+    return n.starts_with('"') || std::isdigit(static_cast<unsigned char>(n[0])) ? "rule " + n : n;
+  }
   return fmt::format("rule {}", r);
 }
 

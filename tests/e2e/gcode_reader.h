@@ -18,6 +18,9 @@ struct Move {
   bool has_e, has_xy;
   std::string type;  // ;TYPE: in force
   int layer;
+  double f = 0;       // feed rate in force (mm/min)
+  double fan = 0;     // part fan in force (0..1)
+  size_t line = 0;    // index in Gcode::lines
 };
 
 struct Gcode {
@@ -59,9 +62,15 @@ inline Gcode read_gcode(const std::string& path) {
   std::istringstream lines(g.text);
   std::string line, type;
   int layer = -1;
-  double x = 0, y = 0, e = 0, z = 0;
+  double x = 0, y = 0, e = 0, z = 0, feed = 0, fan = 0;
   while (std::getline(lines, line)) {
     g.lines.push_back(line);
+    if (line.rfind("M107", 0) == 0) fan = 0;
+    if (line.rfind("M106", 0) == 0) {
+      bool found;
+      double s = word(line, 'S', found);
+      fan = !found ? 1.0 : line.find(" P") != std::string::npos ? s : s / 255.0;  // RepRapFirmware: P0 S0..1
+    }
     if (line.rfind(";LAYER:", 0) == 0) {
       layer = std::stoi(line.substr(7));
       g.layer_z[layer] = z;
@@ -81,7 +90,10 @@ inline Gcode read_gcode(const std::string& path) {
     if (line.rfind("G1 ", 0) == 0 || line.rfind("G0 ", 0) == 0) {
       bool fx, fy, fe;
       double nx = word(line, 'X', fx), ny = word(line, 'Y', fy), ev = word(line, 'E', fe);
-      Move m{x, y, fx ? nx : x, fy ? ny : y, ev, 0, fe, fx || fy, type, layer};
+      bool ff;
+      double nf = word(line, 'F', ff);
+      if (ff) feed = nf;
+      Move m{x, y, fx ? nx : x, fy ? ny : y, ev, 0, fe, fx || fy, type, layer, feed, fan, g.lines.size() - 1};
       if (fe) {
         double ne = g.relative_e ? e + ev : ev;
         m.de = ne - e;

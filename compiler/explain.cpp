@@ -1,0 +1,213 @@
+#include "compiler/explain.h"
+
+#include <fmt/format.h>
+
+#include <set>
+
+#include "compiler/names.h"
+#include "runtime/context/defaults.h"
+#include "runtime/context/overrides.h"
+#include "runtime/vm/verify.h"
+
+namespace tranche::compiler {
+
+namespace {
+
+using schema::FieldId;
+using schema::PropId;
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+std::string show(double v, schema::Type type, schema::Unit unit, schema::EnumType et) {
+  switch (type) {
+    case schema::Type::Bool: return v != 0 ? "true" : "false";
+    case schema::Type::Enum: return std::string(schema::enum_value_name(et, static_cast<int>(v)));
+    case schema::Type::Int: return fmt::format("{:g}", v);
+    case schema::Type::Number: break;
+  }
+  if (unit == schema::Unit::Ratio) return fmt::format("{:g}%", v * 100);
+  auto u = schema::unit_name(unit);
+  return u.empty() ? fmt::format("{:g}", v) : fmt::format("{:g} {}", v, u);
+}
+
+std::string show_field(FieldId f, double v) {
+  const auto& i = schema::field(f);
+  return show(v, i.type, i.unit, i.enum_type);
+}
+
+std::string show_prop(PropId p, double v) {
+  const auto& i = schema::property(p);
+  return show(v, i.type, i.unit, i.enum_type);
+}
+
+}  // namespace
+
+Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, const std::string& at) {
+  const vm::Program& p = rs.program();
+  ctx::Context c;
+  std::vector<std::pair<PropId, double>> given_props;
+  std::set<FieldId> given;
+  std::string_view rest = at;
+  while (!trim(rest).empty()) {
+    size_t comma = rest.find(',');
+    std::string_view item = trim(rest.substr(0, comma));
+    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+    if (item.empty()) continue;
+    size_t eq = item.find('=');
+    if (eq == std::string_view::npos)
+      return Error{"--at", fmt::format("`{}` needs a value: write `name=value`", item)};
+    std::string_view name = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
+    if (schema::find_field(name)) {
+      auto v = ctx::parse_field_value(name, value);
+      if (!v) return Error{"--at", v.error().message};
+      c.set(*schema::find_field(name), *v);
+      given.insert(*schema::find_field(name));
+    } else if (schema::find_property(name)) {
+      auto o = ctx::parse_override(name, value);
+      if (!o) return Error{"--at", o.error().message};
+      given_props.emplace_back(o->prop, o->value);
+    } else {
+      std::vector<std::string> names;
+      for (const auto& f : schema::fields()) names.emplace_back(f.name);
+      for (const auto& q : schema::properties()) names.emplace_back(q.name);
+      std::string msg = fmt::format("`{}` is neither a context field nor a property", name);
+      if (auto best = suggest(std::string(name), names)) msg += fmt::format("; did you mean `{}`?", *best);
+      return Error{"--at", msg};
+    }
+  }
+
+  // Decide every stage as the slicer would: built-in defaults, the given values, then the rules.
+  ctx::BuiltinDefaults defaults;
+  auto props = ctx::PropertyValues::schema_defaults();
+  c.set_props(&props);
+  for (int s = 0; s < schema::kStageCount; ++s) {
+    auto stage = static_cast<schema::Stage>(s);
+    if (Status st = defaults.decide(stage, c, props); !st) return st.error();
+    for (auto [q, v] : given_props)
+      if (schema::property(q).stage == stage) props[q] = v;
+    if (Status st = rs.decide(stage, c, props); !st) return st.error();
+  }
+
+  std::string out;
+  // The composition of the cascade: runs of consecutive rules from one file.
+  out += "cascade, lowest first (later rules win):\n";
+  size_t i = 0;
+  while (i < program.cascade.size()) {
+    const ast::Rule* r = program.cascade[i];
+    size_t j = i;
+    while (j + 1 < program.cascade.size() && program.cascade[j + 1]->span.file == r->span.file &&
+           program.cascade[j + 1]->from_set == r->from_set)
+      ++j;
+    std::string what = r->from_set ? std::string("--set")
+                                   : r->span.file < program.sources.size()
+                                         ? program.sources.file(r->span.file).path +
+                                               (program.sources.file(r->span.file).user ? "" : " (stdlib)")
+                                         : std::string("?");
+    out += i == j ? fmt::format("  rule {:<9} {}\n", i, what) : fmt::format("  rules {}-{:<5} {}\n", i, j, what);
+    i = j + 1;
+  }
+  out += "context:";
+  if (given.empty() && given_props.empty()) out += " (nothing given)";
+  for (FieldId f : given) out += fmt::format(" {} = {};", schema::field(f).name, show_field(f, c.get(f)));
+  for (auto [q, v] : given_props) out += fmt::format(" {} = {} (below the rules);", schema::property(q).name, show_prop(q, v));
+  if (out.back() == ';') out.pop_back();
+  out += "\n";
+  std::vector<std::string> missing;
+  for (const auto& f : schema::fields())
+    if (rs.reads(f.id) && !given.count(f.id)) missing.emplace_back(f.name);
+  if (!missing.empty()) {
+    out += "not given, read as 0:";
+    for (const auto& m : missing) out += " " + m;
+    out += "\n";
+  }
+
+  auto rule_text = [&](uint32_t r) {
+    std::string where = rs.rule_where(r);
+    return where.empty() ? rs.rule_name(r) : fmt::format("{} at {}", rs.rule_name(r), where);
+  };
+  // Why rule r does not match: its first false conjunct and the fields it reads.
+  auto why_not = [&](uint32_t r) -> Result<std::string> {
+    const vm::Rule& rule = p.rules[r];
+    for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) {
+      auto v = rs.evaluate(p.conjuncts[k].chunk, c, props);
+      if (!v) return v.error();
+      if (*v != 0) continue;
+      std::string text = k < p.debug.conj_text.size() ? p.debug.conj_text[k] : "a condition";
+      std::set<uint16_t> fields;
+      const vm::Chunk& ch = p.chunks[p.conjuncts[k].chunk];
+      for (uint32_t n = 0; n < ch.size; ++n) {
+        const vm::Instr& in = p.code[ch.start + n];
+        const vm::OpInfo& info = vm::op_info(in.code());
+        if (info.b == vm::Operand::Field) fields.insert(in.b);
+        if (info.c == vm::Operand::Field && in.code() != vm::Op::Layer && in.code() != vm::Op::LayerRel)
+          fields.insert(in.c);
+      }
+      std::string values;
+      for (uint16_t f : fields) {
+        auto id = static_cast<FieldId>(f);
+        values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", schema::field(id).name, show_field(id, c.get(id)));
+      }
+      return fmt::format("`{}` is false{}", text, values.empty() ? "" : " (" + values + ")");
+    }
+    return std::string("its filter holds");  // not reached for a non-matching rule
+  };
+  auto slot = [&](const std::string& title, const vm::Candidates& cands, bool hook) -> Status {
+    if (cands.empty()) return ok_status();
+    auto m = rs.first_match(cands, c, props);
+    if (!m) return m.error();
+    out += "\n" + title + "\n";
+    if (*m < 0) {
+      out += "  no rule matched";
+      out += hook ? ": nothing is emitted\n" : ": the value from below the rules (built-in defaults)\n";
+    } else {
+      const auto& win = cands[static_cast<size_t>(*m)];
+      out += fmt::format("  decided by {}\n", rule_text(win.rule));
+    }
+    size_t stop = *m < 0 ? cands.size() : static_cast<size_t>(*m);
+    bool header = false;
+    for (size_t k = 0; k < stop; ++k) {
+      auto w = why_not(cands[k].rule);
+      if (!w) return w.error();
+      if (hook && cands[k].append && *w == "its filter holds") continue;
+      if (!header) out += "  later rules that did not match:\n";
+      header = true;
+      out += fmt::format("    {}: {}\n", rule_text(cands[k].rule), *w);
+    }
+    if (hook && *m >= 0) {
+      // Appended executors after the deciding one also run.
+      for (size_t k = 0; k < stop; ++k)
+        if (cands[k].append) {
+          auto one = rs.first_match(vm::Candidates{cands[k]}, c, props);
+          if (one && *one == 0) out += fmt::format("  and, appended: {}\n", rule_text(cands[k].rule));
+        }
+    }
+    if (*m >= 0 && static_cast<size_t>(*m) + 1 < cands.size()) {
+      out += "  earlier rules that lose this slot:";
+      for (size_t k = static_cast<size_t>(*m) + 1; k < cands.size(); ++k)
+        out += fmt::format(" {}{}", rs.rule_name(cands[k].rule), k + 1 < cands.size() ? "," : "");
+      out += "\n";
+    }
+    return ok_status();
+  };
+  for (auto q : p.property_order) {
+    const auto& cands = p.props[static_cast<size_t>(q)];
+    if (cands.empty()) continue;
+    if (Status s = slot(fmt::format("{} = {}", schema::property(q).name, show_prop(q, props[q])), cands, false); !s)
+      return s.error();
+  }
+  for (int l = 0; l < schema::kLevelCount; ++l) {
+    auto level = static_cast<schema::Level>(l);
+    auto name = schema::level_name(level);
+    for (int w = 0; w < 2; ++w)
+      if (Status s = slot(fmt::format("{} {}", w == 0 ? "before" : "after", name), p.hooks[static_cast<size_t>(l)][static_cast<size_t>(w)], true); !s)
+        return s.error();
+    if (Status s = slot(fmt::format("replace {}", name), p.replace[static_cast<size_t>(l)], true); !s) return s.error();
+  }
+  return out;
+}
+
+}  // namespace tranche::compiler

@@ -1,0 +1,102 @@
+#include "geometry/pipeline/load_rules.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "compiler/check.h"
+#include "compiler/codegen.h"
+#include "compiler/diagnostics.h"
+#include "compiler/frontend.h"
+#include "runtime/vm/bundle.h"
+#include "runtime/vm/link.h"
+
+namespace tranche::pipeline {
+
+namespace {
+
+std::optional<std::string> read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return ss.str();
+}
+
+// Compiles `.rules` files (and --set expressions) as one program.
+Result<vm::Program> compile(const std::vector<std::string>& files,
+                            const std::vector<std::pair<std::string, std::string>>& sets,
+                            const std::string& stdlib_dir, Report& report) {
+  compiler::FrontendOptions options;
+  options.stdlib_dir = stdlib_dir;
+  diag::Sink sink;
+  ast::Program program;
+  for (const auto& f : files) compiler::load_file(program, f, options, sink);
+  for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
+  if (compiler::check(program, sink) && !sink.has_errors()) compiler::lint(program, sink);
+  sink.finish({});
+  std::string first;
+  std::string where;
+  for (const auto& d : sink.all()) {
+    if (d.severity == diag::Severity::Warning) {
+      const auto& l = d.labels.empty() ? diag::Label{} : d.labels[0];
+      std::string at = l.span.valid() ? fmt::format("{}:{}:{}", program.sources.file(l.span.file).path, l.span.line,
+                                                    l.span.col)
+                                      : std::string();
+      report.warn("rules", at, fmt::format("warning[{}]: {} (rulec check explains)", d.code, d.message));
+    } else if (first.empty()) {
+      first = compiler::render_text(program.sources, d, false);
+      if (!d.labels.empty() && d.labels[0].span.valid())
+        where = program.sources.file(d.labels[0].span.file).path;
+    }
+  }
+  if (sink.has_errors()) {
+    std::string what = files.empty() ? std::string("--set") : where.empty() ? files.front() : where;
+    std::string more = sink.errors() > 1 ? fmt::format("\n({} errors in all; `rulec check` lists them)", sink.errors())
+                                         : std::string();
+    return Error{what, fmt::format("the rules have errors; nothing was sliced\n{}{}", first, more)};
+  }
+  return compiler::generate(program);
+}
+
+}  // namespace
+
+Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Report& report) {
+  if (in.files.empty() && in.expressions.empty()) return std::shared_ptr<const vm::RuleSet>();
+  std::vector<vm::Program> programs;
+  std::vector<std::string> names;
+  std::vector<std::string> pending;  // consecutive .rules files
+  auto flush = [&](bool with_sets) -> Status {
+    if (pending.empty() && !with_sets) return ok_status();
+    auto p = compile(pending, with_sets ? in.expressions : std::vector<std::pair<std::string, std::string>>{},
+                     in.stdlib_dir, report);
+    if (!p) return p.error();
+    programs.push_back(std::move(*p));
+    names.push_back(pending.empty() ? "--set" : pending.back());
+    pending.clear();
+    return ok_status();
+  };
+  for (const auto& f : in.files) {
+    auto bytes = read_all(f);
+    if (!bytes) return Error{f, "cannot read this rules file (missing, or not a file)"};
+    if (!vm::looks_like_bundle(*bytes)) {
+      pending.push_back(f);
+      continue;
+    }
+    if (Status s = flush(false); !s) return s.error();
+    auto p = vm::read_bundle(*bytes, f);
+    if (!p) return p.error();
+    programs.push_back(std::move(*p));
+    names.push_back(f);
+  }
+  if (Status s = flush(!in.expressions.empty()); !s) return s.error();
+  auto linked = vm::link(std::move(programs), names);
+  if (!linked) return linked.error();
+  auto rs = vm::RuleSet::create(std::move(*linked));
+  if (!rs) return rs.error();
+  return *rs;
+}
+
+}  // namespace tranche::pipeline
