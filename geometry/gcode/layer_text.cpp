@@ -110,6 +110,7 @@ class Formatter final : public ctx::LineSink {
     t += " F";
     append_int(t, travel_f_);
     t += '\n';
+    mark(LayerText::Mark::Kind::LayerTravel, 0);
     lifted_ = false;
     f_ = travel_f_;
     toolpath::walk_layer(plan_, *this);
@@ -119,6 +120,7 @@ class Formatter final : public ctx::LineSink {
     if (!status_) return status_.error();
     out_.e_mm = e_exact_;
     out_.last = pos_;
+    out_.comber = plan_.comber;
     return std::move(out_);
   }
 
@@ -170,7 +172,11 @@ class Formatter final : public ctx::LineSink {
   void path_default(const IslandPlan*, const PathPlan& p) {
     if (p.pts.empty()) return;
     fan(p.fan);
-    if (!has_pos_ || pos_ != p.pts.front()) travel(p.pts.front(), p.retract || !has_pos_);
+    if (!has_pos_ || pos_ != p.pts.front()) {
+      bool retract = p.retract || !has_pos_;
+      for (const auto& q : p.via) travel(q, retract);  // combing: around holes, inside the part
+      travel(p.pts.front(), retract);
+    }
     type(p.kind, p.width);
     double epm = toolpath::bead_area_mm2(p.width, height_) * p.flow_scale / filament_area_;
     for (size_t i = 0; i < p.piece_count(); ++i) {

@@ -5,9 +5,11 @@
 // only when the value changes.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "geometry/toolpath/comb.h"
 #include "geometry/toolpath/layer_loop.h"
 #include "geometry/toolpath/plan.h"
 
@@ -17,7 +19,8 @@ struct LayerText {
   struct Mark {
     // LayerRetract/LayerUnretract: the layer change's retraction, written only when the travel
     // from the previous layer is longer than retract_before_travel.
-    enum class Kind : uint8_t { Fan, NozzleTemp, BedTemp, LayerRetract, LayerUnretract };
+    // LayerTravel: where the travel from the previous layer may go around holes (combing).
+    enum class Kind : uint8_t { Fan, NozzleTemp, BedTemp, LayerRetract, LayerTravel, LayerUnretract };
     size_t offset;  // insert before text[offset]
     Kind kind;
     double value;  // ratio for the fan, °C for temperatures
@@ -28,6 +31,7 @@ struct LayerText {
   bool any_move = false;
   geo::Point first, last;  // model units: where the layer's first travel goes, where it ends
   int travels = 0, retractions = 0;
+  std::shared_ptr<const toolpath::Comber> comber;  // the layer's material, to comb the layer change
 };
 
 // G-code words for the flavour's fan command (ratio 0..1): "M106 S255", "M107", "M106 P0 S0.5".

@@ -38,6 +38,18 @@ std::string format_duration(double seconds) {
 
 namespace {
 
+// Lengths (mm) of the legs of the travel a → via... → b.
+std::vector<double> legs_mm(const geo::Point& a, const geo::Ring& via, const geo::Point& b) {
+  std::vector<double> out;
+  geo::Point prev = a;
+  for (const auto& q : via)
+    out.push_back(std::hypot(double(q.X - prev.X), double(q.Y - prev.Y)) * geo::kMmPerUnit), prev = q;
+  out.push_back(std::hypot(double(b.X - prev.X), double(b.Y - prev.Y)) * geo::kMmPerUnit);
+  return out;
+}
+
+int64_t round_um(int64_t units) { return units >= 0 ? (units + 500) / 1000 : -((-units + 500) / 1000); }
+
 // A header line whose value is known only at the end: written padded, patched in place.
 struct Slot {
   uint64_t offset = 0;
@@ -312,11 +324,20 @@ class PrintWriter final : public ctx::LineSink {
     // The layer change retracts when the travel from the previous layer's end is long.
     const double r = P[PropId::RetractLength];
     bool change_retract = false;
+    geo::Ring via;  // combing route of the layer change
     if (t.any_move && r > 0) {
       double len = has_last
                        ? std::hypot(double(t.first.X - last.X), double(t.first.Y - last.Y)) * geo::kMmPerUnit
                        : 1e9;
-      change_retract = len > P[PropId::RetractBeforeTravel];
+      bool leaves = !has_last || !t.comber || !t.comber->inside(last) || !t.comber->direct(last, t.first);
+      if (leaves && has_last && t.comber && len > P[PropId::RetractBeforeTravel]) {
+        if (auto route = t.comber->route(last, t.first)) {
+          via = std::move(*route);
+          leaves = false;
+          len = toolpath::Comber::length_mm(last, via, t.first);
+        }
+      }
+      change_retract = len > P[PropId::RetractLongTravel] || (leaves && len > P[PropId::RetractBeforeTravel]);
     }
     const long rf = std::lround(P[PropId::RetractSpeed] * 60);
     const bool rel = P[PropId::RelativeE] != 0;
@@ -344,6 +365,16 @@ class PrintWriter final : public ctx::LineSink {
             ++summary_.retractions;
           }
           break;
+        case LayerText::Mark::Kind::LayerTravel:
+          for (const auto& q : via) {
+            out += "G1 X";
+            append_fixed(out, round_um(q.X + setup_.shift.X), 3);
+            out += " Y";
+            append_fixed(out, round_um(q.Y + setup_.shift.Y), 3);
+            out += '\n';
+            ++summary_.travels;
+          }
+          break;
         case LayerText::Mark::Kind::LayerUnretract:
           if (change_retract) {
             out += "G1 E";
@@ -361,8 +392,8 @@ class PrintWriter final : public ctx::LineSink {
       if (change_retract) change += 2 * r / P[PropId::RetractSpeed];
       change += job_.layers[static_cast<size_t>(item.index)].height() / setup_.motion.z_speed;
       if (has_last) {
-        double len = std::hypot(double(t.first.X - last.X), double(t.first.Y - last.Y)) * geo::kMmPerUnit;
-        change += toolpath::trapezoid_time(len, P[PropId::TravelSpeed], 0, 0, setup_.motion.travel_accel);
+        for (double leg : legs_mm(last, via, t.first))
+          change += toolpath::trapezoid_time(leg, P[PropId::TravelSpeed], 0, 0, setup_.motion.travel_accel);
       }
       last = t.last;
       has_last = true;

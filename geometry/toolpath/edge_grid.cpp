@@ -41,8 +41,14 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   }
   if (n == 0) return;
   edges_.reserve(n);
-  for (const auto& r : rings)
-    for (size_t i = 0; i < r.size(); ++i) edges_.push_back({r[i], r[(i + 1) % r.size()]});
+  where_.reserve(n);
+  for (uint32_t k = 0; k < rings.size(); ++k) {
+    const auto& r = rings[k];
+    for (uint32_t i = 0; i < r.size(); ++i) {
+      edges_.push_back({r[i], r[(i + 1) % r.size()]});
+      where_.emplace_back(k, i);
+    }
+  }
   double w = static_cast<double>(box.max_x - box.min_x) + 1,
          h = static_cast<double>(box.max_y - box.min_y) + 1;
   if (cell <= 0) {
@@ -168,6 +174,30 @@ bool EdgeGrid::inside(const Point& p) const {
     }
   }
   return in;
+}
+
+std::vector<EdgeGrid::Hit> EdgeGrid::hits(const Point& a, const Point& b) const {
+  std::vector<Hit> out;
+  if (edges_.empty()) return out;
+  std::vector<uint32_t> seen;
+  visit_segment_cells(a, b, [&](int x, int y) {
+    size_t c = static_cast<size_t>(y) * nx_ + x;
+    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+      uint32_t id = items_[k];
+      const Edge& e = edges_[id];
+      if (!segments_meet(a, b, e.a, e.b)) continue;
+      double rx = double(b.X - a.X), ry = double(b.Y - a.Y), sx = double(e.b.X - e.a.X),
+             sy = double(e.b.Y - e.a.Y);
+      double den = rx * sy - ry * sx;
+      if (den == 0) continue;
+      if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+      seen.push_back(id);
+      double t = (double(e.a.X - a.X) * sy - double(e.a.Y - a.Y) * sx) / den;
+      out.push_back({std::clamp(t, 0.0, 1.0), where_[id].first, where_[id].second});
+    }
+  });
+  std::sort(out.begin(), out.end(), [](const Hit& x, const Hit& y) { return x.t < y.t; });
+  return out;
 }
 
 double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {

@@ -27,6 +27,14 @@ class EdgeGrid {
   // Fraction (0..1) of segment ab lying inside the rings (even-odd).
   double inside_fraction(const geo::Point& a, const geo::Point& b) const;
 
+  // Where segment ab crosses edges: parameter t along ab (0..1), the ring and the edge's index in
+  // it (edge i runs from ring[i] to ring[i + 1]). Sorted by t; collinear overlaps are left out.
+  struct Hit {
+    double t;
+    uint32_t ring, edge;
+  };
+  std::vector<Hit> hits(const geo::Point& a, const geo::Point& b) const;
+
  private:
   struct Edge {
     geo::Point a, b;
@@ -37,6 +45,7 @@ class EdgeGrid {
   int cy(geo::coord_t y) const;
 
   std::vector<Edge> edges_;
+  std::vector<std::pair<uint32_t, uint32_t>> where_;  // edge -> (ring, index in ring)
   geo::coord_t x0_ = 0, y0_ = 0, cell_ = 1;
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> start_;  // CSR: edges of cell i are items_[start_[i] .. start_[i+1])

@@ -8,6 +8,7 @@
 
 #include "geometry/toolpath/cells.h"
 #include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/comb.h"
 #include "geometry/toolpath/context_fill.h"
 #include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/flow.h"
@@ -569,29 +570,45 @@ void LayerTask::travel_and_retract() {
   const double before = S.print_props[PropId::RetractBeforeTravel];
   const double longer = S.print_props[PropId::RetractLongTravel];
   const bool can_retract = S.print_props[PropId::RetractLength] > 0;
-  bool first = true;
+  geo::Rings material;
+  for (const auto& ip : plan_.islands) material.insert(material.end(), ip.shape.begin(), ip.shape.end());
+  auto comber = std::make_shared<Comber>(material);
+  bool first = true, known = true;
   geo::Point pos;
-  const IslandPlan* prev_island = nullptr;
-  auto visit = [&](const IslandPlan* ip, PathPlan& p, const EdgeGrid* grid) {
+  // A travel that would leave the part is routed around inside it when that is not much longer;
+  // it retracts only if it still leaves the part, or is long. Replacer output moves the nozzle
+  // where the plan cannot follow: the travel after it (or into a replaced path) retracts.
+  auto visit = [&](PathPlan& p, bool comb) {
     if (p.pts.empty()) return;
     const geo::Point& to = p.pts.front();
+    p.via.clear();
     if (first) {
-      p.retract = can_retract;  // the layer change always retracts
+      p.retract = can_retract;  // the layer change: the writer decides (and combs) it
+    } else if (!known || p.replaced) {
+      p.retract = can_retract;
     } else {
       double len = std::sqrt(dist2(pos, to)) * geo::kMmPerUnit;
-      bool cross = ip != prev_island || ip == nullptr || (grid && len > before && grid->crosses(pos, to));
-      p.retract = can_retract && (len > longer || (len > before && cross));
+      bool leaves = !comb || !comber->direct(pos, to);
+      if (leaves && comb && len > before) {
+        if (auto via = comber->route(pos, to)) {
+          p.via = std::move(*via);
+          leaves = false;
+          len = Comber::length_mm(pos, p.via, to);
+        }
+      }
+      p.retract = can_retract && (len > longer || (len > before && leaves));
     }
     first = false;
+    known = !p.replaced;
     pos = p.pts.back();
-    prev_island = ip;
   };
-  for (auto& p : plan_.skirt) visit(nullptr, p, nullptr);
+  for (auto& p : plan_.skirt) visit(p, false);
   for (auto& ip : plan_.islands) {
-    EdgeGrid grid(ip.shape);
-    for (auto& p : ip.paths) visit(&ip, p, &grid);
-    if (ip.replaced) prev_island = nullptr;  // replacer moves in between: be safe
+    if (ip.replaced) known = false;  // its own moves may come before its paths
+    for (auto& p : ip.paths) visit(p, !ip.replaced);
+    if (ip.replaced) known = false;
   }
+  plan_.comber = std::move(comber);
 }
 
 // Time of a layer plan at its decided speeds (the writer's own moves, via walk_layer).
@@ -629,7 +646,10 @@ struct TimeVisitor {
   }
   void path_default(const IslandPlan*, const PathPlan& p) {
     if (p.pts.empty()) return;
-    travel(p.pts.front(), p.retract);
+    if (started && p.retract)
+      clock.pause(2 * S.print_props[PropId::RetractLength] / S.print_props[PropId::RetractSpeed]);
+    for (const auto& q : p.via) travel(q, false);
+    travel(p.pts.front(), false);
     double area = bead_area_mm2(p.width, height);
     for (size_t i = 0; i < p.piece_count(); ++i) {
       const auto& pp = p.piece(i);

@@ -4,6 +4,7 @@
 // Coordinates are model units (1 nm); the writer adds the bed offset.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "runtime/schema/schema.h"
 
 namespace tranche::toolpath {
+
+class Comber;
 
 // One step of a replacer's output (`move to`, `gcode`, `comment`, `default`).
 struct Op {
@@ -44,6 +47,7 @@ struct PathPlan {
   std::vector<PieceProps> pieces;      // per piece, or a single entry for all (hoisted)
   float fan = 0;                       // ratio, decided at the cooling stage
   bool retract = false;                // retract for the travel that reaches pts[0]
+  geo::Ring via;                       // that travel's intermediate points (combing around holes)
   bool replaced = false;               // output is `ops` (which may include the default) instead of pts
   std::vector<Op> ops;
   ctx::PropertyValues props;  // every property as decided for this path (executors read them)
@@ -84,6 +88,8 @@ struct LayerPlan {
   double time_s = 0;        // estimated, excluding the travel from the previous layer
   double extruded_mm3 = 0;  // plastic volume
   bool slowed = false;      // min_layer_time slowed it down
+  // The layer's material for routing travels inside it (the writer combs the layer change).
+  std::shared_ptr<const Comber> comber;
 };
 
 }  // namespace tranche::toolpath

@@ -182,6 +182,45 @@ SCENARIO("perimeters follow real borders only") {
   }
 }
 
+SCENARIO("travels comb around holes instead of retracting") {
+  test::TempDir dir("e2e-comb");
+  GIVEN("a plate with a grid of holes, and no retraction forced by a travel's length") {
+    auto s = slice(dir, "plate", geo::plate_with_holes(40, 30, 2, 4, 3, 2.5, 32),
+                   {{"skirt_loops", "0"}, {"retract_long_travel", "1000"}});
+    // Travels in order, each with whether the filament was retracted during it.
+    struct Travel {
+      test::Move m;
+      bool retracted;
+    };
+    std::vector<Travel> travels;
+    bool retracted = false;
+    for (const auto& m : s.gcode.moves) {
+      if (m.has_e && !m.has_xy) retracted = m.de < 0;
+      if (m.has_xy && m.de <= 0 && m.layer >= 0 && m.type != "Custom") travels.push_back({m, retracted});
+    }
+    THEN("a travel that does not retract never leaves the part (its slice, grown by 10 µm)") {
+      std::vector<toolpath::EdgeGrid> grids;
+      for (const auto& l : s.layers) grids.emplace_back(toolpath::offset(material(l), 0.01));
+      int leaving = 0, dry = 0;
+      for (const auto& t : travels) {
+        if (t.retracted) continue;
+        ++dry;
+        geo::Point a = geo::to_point(t.m.x0, t.m.y0), b = geo::to_point(t.m.x, t.m.y);
+        a.X -= s.shift.X, a.Y -= s.shift.Y, b.X -= s.shift.X, b.Y -= s.shift.Y;
+        if (grids[static_cast<size_t>(t.m.layer)].crosses(a, b)) ++leaving;
+      }
+      CHECK(dry > 100);
+      CHECK(leaving == 0);
+    }
+    THEN("it never retracts: the plate is one island, so every travel is combed") {
+      int retractions = 0;
+      for (const auto& m : s.gcode.moves)
+        if (m.layer >= 0 && m.type != "Custom" && m.has_e && !m.has_xy && m.de < 0) ++retractions;
+      CHECK(retractions == 0);
+    }
+  }
+}
+
 SCENARIO("--set changes what it should") {
   test::TempDir dir("e2e-set");
   const geo::Mesh cube = geo::box({15, 15, 4});

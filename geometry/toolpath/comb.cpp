@@ -1,0 +1,81 @@
+#include "geometry/toolpath/comb.h"
+
+#include <cmath>
+
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/order.h"
+
+namespace tranche::toolpath {
+
+using geo::Point;
+
+Comber::Comber(const geo::Rings& material, double margin_mm)
+    : comb_(offset(material, -margin_mm)), comb_grid_(comb_), border_(material) {}
+
+namespace {
+double len_mm(const Point& a, const Point& b) { return std::sqrt(dist2(a, b)) * geo::kMmPerUnit; }
+Point at(const Point& a, const Point& b, double t) {
+  return Point(a.X + static_cast<geo::coord_t>(std::llround(t * double(b.X - a.X))),
+               a.Y + static_cast<geo::coord_t>(std::llround(t * double(b.Y - a.Y))));
+}
+}  // namespace
+
+double Comber::length_mm(const Point& a, const geo::Ring& via, const Point& b) {
+  double len = 0;
+  Point prev = a;
+  for (const auto& q : via) len += len_mm(prev, q), prev = q;
+  return len + len_mm(prev, b);
+}
+
+std::optional<geo::Ring> Comber::route(const Point& a, const Point& b, double slack_mm) const {
+  if (comb_.empty() || !comb_grid_.inside(a) || !comb_grid_.inside(b)) return std::nullopt;
+  auto hits = comb_grid_.hits(a, b);
+  if (hits.size() % 2 != 0) return std::nullopt;  // grazing a vertex: not worth the risk
+  // Each (exit, entry) pair of crossings is bridged along the ring it crosses, the short way.
+  geo::Ring path{a};
+  for (size_t k = 0; k < hits.size(); k += 2) {
+    const auto &out = hits[k], &in = hits[k + 1];
+    if (out.ring != in.ring) return std::nullopt;  // left this island for another one
+    const geo::Ring& r = comb_[out.ring];
+    const uint32_t n = static_cast<uint32_t>(r.size());
+    Point p_out = at(a, b, out.t), p_in = at(a, b, in.t);
+    // Forward: vertices out.edge+1 .. in.edge; backward: out.edge .. in.edge+1.
+    auto walk = [&](bool forward, geo::Ring& pts) {
+      double len = 0;
+      Point prev = p_out;
+      uint32_t steps = forward ? (in.edge + n - out.edge) % n : (out.edge + n - in.edge) % n;
+      for (uint32_t s = 0; s < steps; ++s) {
+        uint32_t v = forward ? (out.edge + 1 + s) % n : (out.edge + n - s) % n;
+        pts.push_back(r[v]);
+        len += len_mm(prev, r[v]);
+        prev = r[v];
+      }
+      return len + len_mm(prev, p_in);
+    };
+    geo::Ring fwd, bwd;
+    double lf = walk(true, fwd), lb = walk(false, bwd);
+    path.push_back(p_out);
+    const geo::Ring& best = lf <= lb ? fwd : bwd;
+    path.insert(path.end(), best.begin(), best.end());
+    path.push_back(p_in);
+  }
+  path.push_back(b);
+  if (path.size() > 400) return std::nullopt;
+  // Pull tight: from each point jump to the farthest later one in direct sight.
+  geo::Ring tight{a};
+  size_t i = 0;
+  while (i + 1 < path.size()) {
+    size_t j = path.size() - 1;
+    while (j > i + 1 && !direct(path[i], path[j])) --j;
+    if (!direct(path[i], path[j])) return std::nullopt;
+    tight.push_back(path[j]);
+    i = j;
+  }
+  double total = 0;
+  for (size_t k = 1; k < tight.size(); ++k) total += len_mm(tight[k - 1], tight[k]);
+  double straight = len_mm(a, b);
+  if (total > std::max(2 * straight, straight + slack_mm)) return std::nullopt;
+  return geo::Ring(tight.begin() + 1, tight.end() - 1);
+}
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,127 @@
+// Combing: travels routed inside the part around holes and notches.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "fixtures.h"
+#include "geometry/toolpath/comb.h"
+#include "geometry/toolpath/edge_grid.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+using geo::to_point;
+
+namespace {
+
+double length_mm(const geo::Point& a, const geo::Ring& via, const geo::Point& b) {
+  double len = 0;
+  geo::Point p = a;
+  for (const auto& q : via) len += std::hypot(double(q.X - p.X), double(q.Y - p.Y)), p = q;
+  len += std::hypot(double(b.X - p.X), double(b.Y - p.Y));
+  return len * geo::kMmPerUnit;
+}
+
+// Every leg of the route stays inside `material`, at least `margin_mm` from its border (checked
+// by sampling points on each leg against the material shrunk by a little less).
+void check_inside(const geo::Rings& material, const geo::Point& a, const geo::Ring& via,
+                  const geo::Point& b) {
+  EdgeGrid border(material);
+  geo::Ring pts{a};
+  pts.insert(pts.end(), via.begin(), via.end());
+  pts.push_back(b);
+  for (size_t i = 1; i < pts.size(); ++i) {
+    CHECK_FALSE(border.crosses(pts[i - 1], pts[i]));
+    for (int k = 0; k <= 20; ++k) {
+      double t = k / 20.0;
+      geo::Point q(
+          pts[i - 1].X + static_cast<geo::coord_t>(std::llround(t * double(pts[i].X - pts[i - 1].X))),
+          pts[i - 1].Y + static_cast<geo::coord_t>(std::llround(t * double(pts[i].Y - pts[i - 1].Y))));
+      CHECK(border.inside(q));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("comb: a travel across a hole goes around it, inside the part, in few moves") {
+  // 30 × 20 plate with a 10 × 10 hole in the middle.
+  geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
+  Comber c(plate);
+  auto a = to_point(5, 10), b = to_point(25, 10);
+  CHECK_FALSE(c.direct(a, b));
+  CHECK(c.inside(a));
+  auto via = c.route(a, b);
+  REQUIRE(via);
+  CHECK(via->size() == 2);  // around two corners of the hole
+  check_inside(plate, a, *via, b);
+  // Around the hole's corners (0.1 mm margin): 2 × hypot(4.9, 5.1) + 10.2, well under 2 × 20.
+  CHECK(length_mm(a, *via, b) == doctest::Approx(2 * std::hypot(4.9, 5.1) + 10.2).epsilon(0.01));
+}
+
+TEST_CASE("comb: a straight travel inside the part needs no route") {
+  geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
+  Comber c(plate);
+  CHECK(c.direct(to_point(1, 1), to_point(29, 2)));
+  CHECK(c.direct(to_point(1, 1), to_point(1, 19)));
+}
+
+TEST_CASE("comb: a travel across a notch follows the notch's bottom") {
+  // U shape: 30 wide, 20 tall, a 10 × 15 notch from the top.
+  geo::Ring u{to_point(0, 0),  to_point(30, 0), to_point(30, 20), to_point(20, 20),
+              to_point(20, 5), to_point(10, 5), to_point(10, 20), to_point(0, 20)};
+  geo::Rings shape{u};
+  Comber c(shape);
+  auto a = to_point(5, 18), b = to_point(25, 18);
+  CHECK_FALSE(c.direct(a, b));
+  auto via = c.route(a, b);
+  REQUIRE(via);
+  CHECK(via->size() == 2);
+  check_inside(shape, a, *via, b);
+  for (const auto& q : *via) CHECK(geo::to_mm(q.Y) <= 5.0001);  // round the notch's bottom corners
+}
+
+TEST_CASE("comb: no route between islands, from outside, or when the detour is too long") {
+  SUBCASE("two islands") {
+    geo::Rings two{test::rect(0, 0, 10, 10), test::rect(20, 0, 30, 10)};
+    Comber c(two);
+    CHECK_FALSE(c.direct(to_point(5, 5), to_point(25, 5)));
+    CHECK_FALSE(c.route(to_point(5, 5), to_point(25, 5)));
+  }
+  SUBCASE("an end outside the part, or within the margin of its border") {
+    geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
+    Comber c(plate);
+    CHECK_FALSE(c.route(to_point(-2, 10), to_point(25, 10)));
+    CHECK_FALSE(c.route(to_point(0.05, 10), to_point(25, 10)));
+  }
+  SUBCASE("a deep notch: going around is much longer than retracting") {
+    // A notch 80 mm deep and 2 mm wide: the way around is ~160 mm for a 4 mm hop.
+    geo::Ring u{to_point(0, 0),  to_point(10, 0), to_point(10, 100), to_point(6, 100),
+                to_point(6, 20), to_point(4, 20), to_point(4, 100),  to_point(0, 100)};
+    Comber c(geo::Rings{u});
+    CHECK_FALSE(c.route(to_point(2, 99), to_point(8, 99)));
+  }
+}
+
+TEST_CASE("comb: a travel crossing two holes is routed around both") {
+  geo::Rings plate{test::rect(0, 0, 50, 20), test::rect(10, 5, 20, 15, false),
+                   test::rect(30, 5, 40, 15, false)};
+  Comber c(plate);
+  auto a = to_point(5, 10), b = to_point(45, 10);
+  auto via = c.route(a, b);
+  REQUIRE(via);
+  check_inside(plate, a, *via, b);
+  CHECK(length_mm(a, *via, b) < 2 * 40);
+}
+
+TEST_CASE("edge grid: hits are sorted along the segment and name their ring and edge") {
+  geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
+  EdgeGrid g(plate);
+  auto h = g.hits(to_point(5, 10), to_point(25, 10));
+  REQUIRE(h.size() == 2);
+  CHECK(h[0].t == doctest::Approx(0.25));
+  CHECK(h[1].t == doctest::Approx(0.75));
+  CHECK(h[0].ring == 1);
+  CHECK(h[1].ring == 1);
+  CHECK(h[0].edge != h[1].edge);
+  CHECK(g.hits(to_point(1, 1), to_point(2, 2)).empty());
+}
