@@ -14,6 +14,7 @@ for bin in "$build"/fuzz/fuzz_*; do
   name=$(basename "$bin"); name=${name#fuzz_}
   work=$(mktemp -d)
   seeds="$root/fuzz/corpus/$name"
+  [[ $name == bundle ]] && seeds="$root/fuzz/corpus/rules"  # rule texts, compiled by the target
   mkdir -p "$work/corpus"
   [[ -d "$seeds" ]] && cp -r "$seeds"/. "$work/corpus/" 2>/dev/null || true
   echo "fuzz: $name for ${seconds}s"
