@@ -31,13 +31,18 @@ constexpr size_t kStackRegs = 1u << 17;
 struct ThreadState {
   std::unique_ptr<double[]> regs{new double[kStackRegs]()};
   size_t top = 0;
-  struct Kept {
-    uint64_t gen = 0;
+  // Per property: the candidates live for the current outer element (see vm.h, hoisting).
+  struct Live {
+    uint64_t key = 0;  // Context::generation of the level outside the decision; 0: none
     uint32_t owner = 0;
-    uint8_t value = 0;
+    struct Entry {
+      uint32_t candidate;       // index into the property's candidates
+      uint32_t first, count;    // its inner conjuncts in RuleSet::split_list_
+    };
+    std::vector<Entry> entries;  // in candidate order
   };
-  std::vector<Kept> kept;  // per conjunct
-  std::string text;        // the template being built
+  std::array<Live, schema::kPropCount> live;
+  std::string text;  // the template being built
 };
 
 ThreadState& state() {
@@ -73,20 +78,32 @@ class Machine {
 
   ctx::LineSink* out = nullptr;
   ctx::ReplaceApi* api = nullptr;
-  Level level = Level::Piece;  // the decision's level: conjuncts of outer levels are kept
+
+  ~Machine() {
+    auto& c = thread_counters();
+    c.conjuncts_run += run_;
+    c.live_rebuilds += rebuilds_;
+  }
 
   // Runs chunk `ci`; false on a fault (see error()).
   bool exec(uint32_t ci, double& result);
+  // Whether conjunct k holds (for rule r, named in errors).
+  bool conj(uint32_t k, uint32_t r, bool& ok);
   // Whether every conjunct of rule r holds.
   bool test(uint32_t r, bool& result);
-  // The value of property q as the candidates from position `from` on decide it (else its base).
-  bool resolve(schema::PropId q, size_t from, double& result);
+  // The candidate of property q that decides it, among those of rules before `below` (all when
+  // UINT32_MAX): its index, or -1 when none matches.
+  bool winner(schema::PropId q, uint32_t below, int& index);
+  // The value of property q as the rules before `below` decide it (else its base).
+  bool resolve(schema::PropId q, uint32_t below, double& result);
+  // The value of candidate i of property q.
+  bool value(schema::PropId q, int i, double& result);
 
   Error error() const;
   bool faulted() const { return fault_ != Fault::None; }
   void fail_api(Error e) {
     fault_ = Fault::Api;
-    api_error_ = std::move(e);
+    api_error_ = std::make_unique<Error>(std::move(e));
   }
 
  private:
@@ -110,8 +127,9 @@ class Machine {
   int depth_ = 0;
   Fault fault_ = Fault::None;
   uint32_t fault_chunk_ = 0, fault_pc_ = 0;
-  Error api_error_;
+  std::unique_ptr<Error> api_error_;  // set with Fault::Api
   uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
+  uint64_t run_ = 0, rebuilds_ = 0;
 
   friend class RuleSet;
 };
@@ -167,59 +185,104 @@ bool Machine::emit(bool comment, uint32_t ci, uint32_t pc) {
   return true;
 }
 
+inline bool Machine::conj(uint32_t k, uint32_t r, bool& ok) {
+  ++run_;
+  const RuleSet::Simple& t = rs_.simple_[k];
+  if (t.on) {
+    double v = ctx_.values()[t.field];
+    bool hit;
+    switch (t.cmp) {
+      case 0: hit = v == t.k; break;
+      case 1: hit = v != t.k; break;
+      case 2: hit = v < t.k; break;
+      case 3: hit = v <= t.k; break;
+      case 4: hit = v > t.k; break;
+      default: hit = v >= t.k; break;
+    }
+    ok = hit != t.negate;
+    return true;
+  }
+  uint32_t saved = rule_;
+  rule_ = r;
+  double v;
+  if (!exec(p_.conjuncts[k].chunk, v)) return false;
+  rule_ = saved;
+  ok = v != 0;
+  return true;
+}
+
 bool Machine::test(uint32_t r, bool& result) {
   const Rule& rule = p_.rules[r];
-  auto& counters = thread_counters();
   for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) {
-    const Conjunct& cj = p_.conjuncts[k];
-    bool keep = rs_.hoistable_[k] && cj.level < level;
-    uint64_t gen = keep ? ctx_.generation(cj.level) : 0;
-    if (gen != 0) {
-      auto& kept = st_.kept;
-      if (kept.size() < p_.conjuncts.size()) kept.resize(p_.conjuncts.size());
-      ThreadState::Kept& e = kept[k];
-      if (e.gen == gen && e.owner == rs_.uid_) {
-        ++counters.conjuncts_kept;
-        if (!e.value) return result = false, true;
-        continue;
-      }
-      double v;
-      ++counters.conjuncts_run;
-      uint32_t saved = rule_;
-      rule_ = r;
-      if (!exec(cj.chunk, v)) return false;
-      rule_ = saved;
-      e.gen = gen;
-      e.owner = rs_.uid_;
-      e.value = v != 0;
-      if (v == 0) return result = false, true;
-      continue;
-    }
-    double v;
-    ++counters.conjuncts_run;
-    uint32_t saved = rule_;
-    rule_ = r;
-    if (!exec(cj.chunk, v)) return false;
-    rule_ = saved;
-    if (v == 0) return result = false, true;
+    if (!conj(k, r, result)) return false;
+    if (!result) return true;
   }
   return result = true, true;
 }
 
-bool Machine::resolve(schema::PropId q, size_t from, double& result) {
-  const Candidates& cands = p_.props[static_cast<size_t>(q)];
-  for (size_t i = from; i < cands.size(); ++i) {
-    bool ok;
-    if (!test(cands[i].rule, ok)) return false;
-    if (!ok) continue;
-    uint32_t saved = rule_;
-    rule_ = cands[i].rule;
-    if (!exec(cands[i].chunk, result)) return false;
-    rule_ = saved;
+bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
+  const auto qi = static_cast<size_t>(q);
+  const Candidates& cands = p_.props[qi];
+  const auto& split = rs_.split_[qi];
+  const uint32_t* list = rs_.split_list_.data();
+  size_t start = 0;
+  if (below != UINT32_MAX)  // descending rule order: the first candidate below rule `below`
+    start = static_cast<size_t>(std::lower_bound(cands.begin(), cands.end(), below,
+                                                 [](const Candidate& c, uint32_t rule) { return c.rule >= rule; }) -
+                                cands.begin());
+  auto all = [&](const uint32_t* ks, uint32_t n, uint32_t r, bool& ok) {
+    ok = true;
+    for (uint32_t j = 0; j < n && ok; ++j)
+      if (!conj(ks[j], r, ok)) return false;
     return true;
+  };
+  Level outer = rs_.decided_at_[qi];
+  uint64_t key = outer > Level::Print ? ctx_.generation(static_cast<Level>(static_cast<int>(outer) - 1)) : 0;
+  if (key != 0) {
+    ThreadState::Live& live = st_.live[qi];
+    if (live.key != key || live.owner != rs_.uid_) {
+      ++rebuilds_;
+      live.entries.clear();
+      for (uint32_t i = 0; i < cands.size(); ++i) {
+        bool ok;
+        if (!all(list + split[i].first, split[i].outer, cands[i].rule, ok)) return false;
+        if (ok) live.entries.push_back({i, split[i].first + split[i].outer, split[i].inner});
+      }
+      live.key = key;
+      live.owner = rs_.uid_;
+    }
+    for (const auto& e : live.entries) {
+      if (e.candidate < start) continue;
+      bool ok = true;
+      for (uint32_t j = 0; j < e.count && ok; ++j)
+        if (!conj(list[e.first + j], cands[e.candidate].rule, ok)) return false;
+      if (ok) return index = static_cast<int>(e.candidate), true;
+    }
+    return index = -1, true;
   }
-  result = props_->base[static_cast<size_t>(q)];
+  for (size_t i = start; i < cands.size(); ++i) {
+    bool ok;
+    if (!all(list + split[i].first, split[i].outer + split[i].inner, cands[i].rule, ok)) return false;
+    if (ok) return index = static_cast<int>(i), true;
+  }
+  return index = -1, true;
+}
+
+bool Machine::value(schema::PropId q, int i, double& result) {
+  const Candidate& c = p_.props[static_cast<size_t>(q)][static_cast<size_t>(i)];
+  if (rs_.is_const_[c.chunk]) return result = rs_.const_value_[c.chunk], true;
+  uint32_t saved = rule_;
+  rule_ = c.rule;
+  if (!exec(c.chunk, result)) return false;
+  rule_ = saved;
   return true;
+}
+
+bool Machine::resolve(schema::PropId q, uint32_t below, double& result) {
+  int i;
+  if (!winner(q, below, i)) return false;
+  if (i < 0) return result = props_->base[static_cast<size_t>(q)], true;
+  return value(q, i, result);
 }
 
 #if defined(__GNUC__)
@@ -291,12 +354,8 @@ bool Machine::exec(uint32_t ci, double& result) {
   CASE(Field) r[A] = F[B]; NEXT;
   CASE(Prop) r[A] = props_->values[B]; NEXT;
   CASE(Inherit) {
-    const Candidates& cands = p_.props[B];
-    // Candidates are in descending rule order: start at the first one below rule C.
-    auto it = std::lower_bound(cands.begin(), cands.end(), C,
-                               [](const Candidate& c, uint32_t rule) { return c.rule >= rule; });
     double v;
-    if (!resolve(static_cast<schema::PropId>(B), static_cast<size_t>(it - cands.begin()), v)) return false;
+    if (!resolve(static_cast<schema::PropId>(B), C, v)) return false;
     r[A] = v;
     NEXT;
   }
@@ -492,7 +551,7 @@ Error Machine::error() const {
     case Fault::Depth:
       what = "properties read their own earlier values too deeply (or rules nest too many registers)";
       break;
-    case Fault::Api: what = api_error_.message; break;
+    case Fault::Api: what = api_error_ ? api_error_->message : std::string("invalid instruction"); break;
   }
   std::string where;
   const Debug& d = p_.debug;
@@ -565,19 +624,66 @@ void RuleSet::analyse() {
     }
     chunk_level[c] = lv;
   }
-  hoistable_.assign(p.conjuncts.size(), 0);
-  for (size_t k = 0; k < p.conjuncts.size(); ++k) hoistable_[k] = pure[p.conjuncts[k].chunk];
+  // Conjuncts of the form `field CMP constant`: [j(n)CMP.fk field, K, ->2; retk 1; retk 0].
+  simple_.assign(p.conjuncts.size(), Simple{});
+  for (size_t k = 0; k < p.conjuncts.size(); ++k) {
+    const Chunk& ch = p.chunks[p.conjuncts[k].chunk];
+    if (ch.size != 3) continue;
+    const Instr* c = &p.code[ch.start];
+    if (c[1].code() != Op::RetK || c[2].code() != Op::RetK || p.consts[c[1].b] != 1 || p.consts[c[2].b] != 0)
+      continue;
+    static constexpr Op kFused[6][2] = {{Op::JnEqFK, Op::JEqFK}, {Op::JnNeFK, Op::JNeFK}, {Op::JnLtFK, Op::JLtFK},
+                                        {Op::JnLeFK, Op::JLeFK}, {Op::JnGtFK, Op::JGtFK}, {Op::JnGeFK, Op::JGeFK}};
+    for (uint8_t cmp = 0; cmp < 6; ++cmp)
+      for (int when = 0; when < 2; ++when)
+        if (c[0].code() == kFused[cmp][when] && c[0].d == 2)
+          // jn: jump to "false" when the comparison fails, so the result is the comparison;
+          // j: jump to "false" when it holds, so the result is its negation.
+          simple_[k] = Simple{true, when == 1, cmp, c[0].b, p.consts[c[0].c]};
+  }
+  is_const_.assign(p.chunks.size(), 0);
+  const_value_.assign(p.chunks.size(), 0);
+  for (size_t c = 0; c < p.chunks.size(); ++c) {
+    const Chunk& ch = p.chunks[c];
+    if (ch.kind == ChunkKind::Value && ch.size == 1 && p.code[ch.start].code() == Op::RetK) {
+      is_const_[c] = 1;
+      const_value_[c] = p.consts[p.code[ch.start].b];
+    }
+  }
   auto rule_level = [&](uint32_t r) {
     Level lv = Level::Print;
     for (uint32_t k = p.rules[r].first; k < p.rules[r].first + p.rules[r].count; ++k)
       lv = std::max(lv, std::max(p.conjuncts[k].level, chunk_level[p.conjuncts[k].chunk]));
     return lv;
   };
+  for (const auto& info : schema::properties()) {
+    Range& r = ranges_[static_cast<size_t>(info.id)];
+    r.plain = info.type == schema::Type::Number && info.unit != schema::Unit::Deg;
+    r.min = info.min;
+    r.max = info.max;
+  }
   varies_.fill(Level::Print);
   for (auto q : p.property_order) {
     const auto& cands = p.props[static_cast<size_t>(q)];
-    if (cands.empty()) continue;
     auto st = schema::property(q).stage;
+    Level decided = st == Stage::Piece ? Level::Piece : schema::stage_level(st);
+    decided_at_[static_cast<size_t>(q)] = decided;
+    // Each candidate's conjuncts, those read before the decision's level first.
+    for (const auto& c : cands) {
+      Split sp;
+      sp.first = static_cast<uint32_t>(split_list_.size());
+      const Rule& rule = p.rules[c.rule];
+      for (int pass = 0; pass < 2; ++pass)
+        for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) {
+          bool outer = pure[p.conjuncts[k].chunk] && p.conjuncts[k].level < decided &&
+                       chunk_level[p.conjuncts[k].chunk] < decided;
+          if (outer != (pass == 0)) continue;
+          split_list_.push_back(k);
+          (outer ? sp.outer : sp.inner) += 1;
+        }
+      split_[static_cast<size_t>(q)].push_back(sp);
+    }
+    if (cands.empty()) continue;
     stage_props_[static_cast<size_t>(st)].push_back(q);
     Level& v = varies_[static_cast<size_t>(st)];
     for (const auto& c : cands) v = std::max(v, std::max(rule_level(c.rule), chunk_level[c.chunk]));
@@ -637,33 +743,31 @@ Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& 
   if (list.empty()) return ok_status();
   for (auto q : list) props.base[static_cast<size_t>(q)] = props[q];
   Machine m(*this, c, &props);
-  m.level = schema::stage_level(stage);
-  if (stage == Stage::Piece) m.level = Level::Piece;
   for (auto q : list) {
-    const Candidates& cands = program_.props[static_cast<size_t>(q)];
-    for (const auto& cand : cands) {
-      bool ok;
-      if (!m.test(cand.rule, ok)) return m.error();
-      if (!ok) continue;
-      double v;
-      m.rule_ = cand.rule;
-      if (!m.exec(cand.chunk, v)) return m.error();
-      auto checked = check_value(q, v);
-      if (!checked) {
-        std::string where = rule_where(cand.rule);
-        const Debug& d = program_.debug;
-        const Chunk& ch = program_.chunks[cand.chunk];
-        if (!d.empty() && ch.start < d.instr_loc.size()) {
-          const Loc& l = d.locs[d.instr_loc[ch.start]];
-          if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
-        }
-        return Error{where.empty() ? "rules" : where,
-                     fmt::format("in {}: {}", rule_name(cand.rule), checked.error().message)};
-      }
-      props[q] = *checked;
-      m.rule_ = UINT32_MAX;
-      break;
+    int i;
+    if (!m.winner(q, UINT32_MAX, i)) return m.error();
+    if (i < 0) continue;
+    double v;
+    if (!m.value(q, i, v)) return m.error();
+    const Range& range = ranges_[static_cast<size_t>(q)];
+    if (range.plain && v >= range.min && v <= range.max) {  // the common case: a number in range
+      props[q] = v;
+      continue;
     }
+    auto checked = check_value(q, v);
+    if (!checked) {
+      const Candidate& cand = program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)];
+      std::string where = rule_where(cand.rule);
+      const Debug& d = program_.debug;
+      const Chunk& ch = program_.chunks[cand.chunk];
+      if (!d.empty() && ch.start < d.instr_loc.size()) {
+        const Loc& l = d.locs[d.instr_loc[ch.start]];
+        if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
+      }
+      return Error{where.empty() ? "rules" : where,
+                   fmt::format("in {}: {}", rule_name(cand.rule), checked.error().message)};
+    }
+    props[q] = *checked;
   }
   return ok_status();
 }
@@ -678,7 +782,6 @@ Status RuleSet::run(Level level, ctx::When when, const ctx::Context& c, ctx::Lin
   const Candidates& cands = program_.hooks[static_cast<size_t>(level)][when == ctx::When::Before ? 0 : 1];
   if (cands.empty()) return ok_status();
   Machine m(*this, c, &c.props());
-  m.level = level;
   m.out = &out;
   // The last matching executor decides the hook; the `append` ones after it add to it.
   const Candidate* base = nullptr;
@@ -712,7 +815,6 @@ Result<bool> RuleSet::replace(Level level, const ctx::Context& c, ctx::ReplaceAp
   const Candidates& cands = program_.replace[static_cast<size_t>(level)];
   if (cands.empty()) return false;
   Machine m(*this, c, &c.props());
-  m.level = level;
   m.api = &api;
   for (const auto& cand : cands) {
     bool ok;
@@ -732,7 +834,6 @@ Result<double> RuleSet::evaluate(uint32_t chunk, const ctx::Context& c, const ct
   auto kind = program_.chunks[chunk].kind;
   if (kind != ChunkKind::Test && kind != ChunkKind::Value) return Error{"rules", "only tests and values evaluate"};
   Machine m(*this, c, &props);
-  m.level = Level::Print;  // keep nothing: explain evaluates each part on its own
   double v;
   if (!m.exec(chunk, v)) return m.error();
   return v;
@@ -741,7 +842,6 @@ Result<double> RuleSet::evaluate(uint32_t chunk, const ctx::Context& c, const ct
 Result<int> RuleSet::first_match(const Candidates& cands, const ctx::Context& c,
                                  const ctx::PropertyValues& props) const {
   Machine m(*this, c, &props);
-  m.level = Level::Print;
   for (size_t i = 0; i < cands.size(); ++i) {
     bool ok;
     if (!m.test(cands[i].rule, ok)) return m.error();

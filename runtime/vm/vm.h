@@ -7,12 +7,16 @@
 //   Executors  for a hook, the last matching executor, then every matching `append` one after it
 //   Replacers  for an island or a path, the last matching replacer runs instead of the default
 //
-// Hoisting: a conjunct that reads only fields of a level outer to the decision (a layer-level
-// test inside a per-piece decision) is evaluated once per element of its level and thread, and
-// its result kept for as long as Context::generation of its level stays the same.
+// Hoisting: each property's candidates are split, for the level the property is decided at, into
+// the conjuncts that read only fields of outer levels and the others. For each element of the
+// level just outside (each path, for a per-piece `speed`) the outer conjuncts are evaluated once
+// and the candidates whose outer conjuncts hold are kept ("live"); each decision then tests only
+// the inner conjuncts of the live candidates, in order, and stops at the first match. The kept
+// list stays valid while Context::generation of that outer level stays the same. A conjunct that
+// compares a field with a constant is evaluated in place, without entering the interpreter.
 //
 // Thread safety: a RuleSet is immutable once created; every call keeps its state on the
-// calling thread (registers, text buffer, the kept conjunct results), so layers run in parallel.
+// calling thread (registers, text buffer, the live candidate lists), so layers run in parallel.
 //
 // Run-time errors (division by zero, a square root of a negative number, a value that is not a
 // number or outside the property's physical range, a template or output too long, too many loop
@@ -79,13 +83,35 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   std::array<bool, schema::kFieldCount> reads_{};
   std::array<schema::Level, schema::kStageCount> varies_{};
   std::array<std::vector<schema::PropId>, schema::kStageCount> stage_props_;  // with candidates, in order
-  std::vector<uint8_t> hoistable_;  // per conjunct: reads fields only (no properties, no collections)
+  // A conjunct `field CMP constant` (most of them), evaluated without the interpreter.
+  struct Simple {
+    bool on = false;
+    bool negate = false;
+    uint8_t cmp = 0;  // 0 ==, 1 !=, 2 <, 3 <=, 4 >, 5 >=
+    uint16_t field = 0;
+    double k = 0;
+  };
+  std::vector<Simple> simple_;        // per conjunct
+  std::vector<uint8_t> is_const_;     // per chunk: a Value chunk that is one `retk`
+  std::vector<double> const_value_;   // its value
+  // Per property and candidate: its conjuncts, outer ones first (indices into split_list_).
+  struct Split {
+    uint32_t first = 0, outer = 0, inner = 0;
+  };
+  std::array<std::vector<Split>, schema::kPropCount> split_;
+  std::vector<uint32_t> split_list_;
+  std::array<schema::Level, schema::kPropCount> decided_at_{};  // the level each property is decided at
+  struct Range {
+    bool plain = false;  // a number without unit conversion: in range means stored as is
+    double min = 0, max = 0;
+  };
+  std::array<Range, schema::kPropCount> ranges_{};
 };
 
 // Counters of the calling thread, for tests of hoisting (never reset by the VM).
 struct Counters {
-  uint64_t conjuncts_run = 0;   // conjunct chunks executed
-  uint64_t conjuncts_kept = 0;  // conjunct results reused from an earlier evaluation
+  uint64_t conjuncts_run = 0;   // conjuncts evaluated
+  uint64_t live_rebuilds = 0;   // live candidate lists built (once per outer element and property)
 };
 Counters& thread_counters();
 
