@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <set>
 
 #include "compiler/names.h"
@@ -157,37 +158,40 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   };
   auto slot = [&](const std::string& title, const vm::Candidates& cands, bool hook) -> Status {
     if (cands.empty()) return ok_status();
-    auto m = rs.first_match(cands, c, props);
-    if (!m) return m.error();
-    out += "\n" + title + "\n";
-    if (*m < 0) {
-      out += "  no rule matched";
-      out += hook ? ": nothing is emitted\n" : ": the value from below the rules (built-in defaults)\n";
-    } else {
-      const auto& win = cands[static_cast<size_t>(*m)];
-      out += fmt::format("  decided by {}\n", rule_text(win.rule));
+    // The deciding candidate: the first (last written) match; for hooks, the first match that
+    // is not `append` (matching `append` ones before it add to it).
+    int decider = -1;
+    std::vector<size_t> appended;
+    for (size_t k = 0; k < cands.size() && decider < 0; ++k) {
+      auto m = rs.first_match(vm::Candidates{cands[k]}, c, props);
+      if (!m) return m.error();
+      if (*m != 0) continue;
+      if (hook && cands[k].append)
+        appended.push_back(k);
+      else
+        decider = static_cast<int>(k);
     }
-    size_t stop = *m < 0 ? cands.size() : static_cast<size_t>(*m);
+    out += "\n" + title + "\n";
+    if (decider >= 0)
+      out += fmt::format("  decided by {}\n", rule_text(cands[static_cast<size_t>(decider)].rule));
+    else if (appended.empty())
+      out += hook ? "  no rule matched: nothing is emitted\n"
+                  : "  no rule matched: the value from below the rules (built-in defaults)\n";
+    for (auto it = appended.rbegin(); it != appended.rend(); ++it)
+      out += fmt::format("  {}appended: {}\n", decider >= 0 ? "and, " : "", rule_text(cands[*it].rule));
+    size_t stop = decider < 0 ? cands.size() : static_cast<size_t>(decider);
     bool header = false;
     for (size_t k = 0; k < stop; ++k) {
+      if (std::find(appended.begin(), appended.end(), k) != appended.end()) continue;
       auto w = why_not(cands[k].rule);
       if (!w) return w.error();
-      if (hook && cands[k].append && *w == "its filter holds") continue;
       if (!header) out += "  later rules that did not match:\n";
       header = true;
       out += fmt::format("    {}: {}\n", rule_text(cands[k].rule), *w);
     }
-    if (hook && *m >= 0) {
-      // Appended executors after the deciding one also run.
-      for (size_t k = 0; k < stop; ++k)
-        if (cands[k].append) {
-          auto one = rs.first_match(vm::Candidates{cands[k]}, c, props);
-          if (one && *one == 0) out += fmt::format("  and, appended: {}\n", rule_text(cands[k].rule));
-        }
-    }
-    if (*m >= 0 && static_cast<size_t>(*m) + 1 < cands.size()) {
+    if (decider >= 0 && static_cast<size_t>(decider) + 1 < cands.size()) {
       out += "  earlier rules that lose this slot:";
-      for (size_t k = static_cast<size_t>(*m) + 1; k < cands.size(); ++k)
+      for (size_t k = static_cast<size_t>(decider) + 1; k < cands.size(); ++k)
         out += fmt::format(" {}{}", rs.rule_name(cands[k].rule), k + 1 < cands.size() ? "," : "");
       out += "\n";
     }

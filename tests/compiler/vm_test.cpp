@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "runtime/vm/verify.h"
 #include "tests/compiler/vm_helpers.h"
 
@@ -420,4 +423,45 @@ rule { after path { for p in path.points { for q in path.points { for r in path.
   auto s = rs->run(Level::Path, ctx::When::After, c, out);
   REQUIRE_FALSE(s.ok());
   CHECK(s.error().message.find("steps") != std::string::npos);
+}
+
+TEST_CASE("vm: one RuleSet decides on many threads at once, as layers run in parallel") {
+  auto rs = test::rules(R"(
+rule "base" { speed = 60 mm/s }
+rule when layer.index < 2 { speed = 20 mm/s }
+rule when island.area < 4 mm2 { speed = speed * 50% }
+rule when piece.overhang > 30% and layer.index > 0 { speed = 15 mm/s }
+rule { after path { comment "p {layer.index} {island.area:.1}" } }
+)");
+  auto one = [&](int i) {
+    ctx::Context c;
+    c.clear_from(Level::Layer);
+    c.set(FieldId::LayerIndex, i % 7);
+    c.clear_from(Level::Island);
+    c.set(FieldId::IslandArea, (i % 5) * 1.5);
+    c.clear_from(Level::Path);
+    double sum = 0;
+    for (int k = 0; k < 20; ++k) {
+      c.clear_from(Level::Piece);
+      c.set(FieldId::PieceOverhang, (k % 3) * 0.2);
+      auto props = ctx::PropertyValues::schema_defaults();
+      c.set_props(&props);
+      if (!rs->decide(Stage::Piece, c, props).ok()) return -1.0;
+      sum += props[PropId::Speed];
+    }
+    test::Lines out;
+    if (!rs->run(Level::Path, ctx::When::After, c, out).ok() || out.lines.size() != 1) return -1.0;
+    return sum + static_cast<double>(out.lines[0].size());
+  };
+  const int n = 4000;
+  std::vector<double> serial(n), parallel(n);
+  for (int i = 0; i < n; ++i) serial[static_cast<size_t>(i)] = one(i);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (int i = t; i < n; i += 4) parallel[static_cast<size_t>(i)] = one(i);
+    });
+  for (auto& th : threads) th.join();
+  CHECK(serial == parallel);
+  CHECK(std::find(serial.begin(), serial.end(), -1.0) == serial.end());
 }
