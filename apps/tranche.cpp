@@ -19,6 +19,11 @@ Slices MODEL (.stl, binary or ASCII, or .svg) into G-code and/or layer exports.
 options:
   -o, --output FILE            write G-code to FILE
   --rules FILE                 apply a .rules file or compiled bundle (repeatable; later wins)
+  --printer NAME               printer profile: stdlib/printers/NAME.rules or a .rules file
+                               (default generic-marlin; `none` for the defaults only)
+  --material NAME              material profile: stdlib/materials/NAME.rules or a .rules file
+                               (default pla; `none` for none)
+  --stdlib DIR                 where stdlib rules (`use "printers/..."`) are looked for first
   --set KEY=VALUE              override a property, e.g. --set layer_height=0.15 (repeatable)
   --export-svg FILE            write every layer's polygons as SVG (one <g> per layer)
   --export-layers FILE         write every layer's polygons as JSON
@@ -68,6 +73,12 @@ int main(int argc, char** argv) {
     } else if (a == "--rules") {
       if (!value(v)) return usage_error("--rules needs a file name");
       opt.rules.push_back(v);
+    } else if (a == "--printer") {
+      if (!value(opt.printer) || opt.printer.empty()) return usage_error("--printer needs a name or a file");
+    } else if (a == "--material") {
+      if (!value(opt.material) || opt.material.empty()) return usage_error("--material needs a name or a file");
+    } else if (a == "--stdlib") {
+      if (!value(opt.stdlib_dir)) return usage_error("--stdlib needs a directory");
     } else if (a == "--set") {
       if (!value(v)) return usage_error("--set needs KEY=VALUE");
       auto eq = v.find('=');

@@ -168,7 +168,10 @@ void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
     if (q.stage == *limit.stage && e.ref == RefKind::Property && limit.prop && *limit.prop != e.prop)
       deps_.push_back(Dependency{*limit.prop, e.prop, e.span, &r});
   }
-  if (limit.level && schema::stage_level(q.stage) > *limit.level) {
+  // Hooks on the print read layer properties as decided for the first layer: the start G-code
+  // heats to the first layer's temperatures.
+  bool first_layer = limit.level == Level::Print && !limit.stage && q.stage <= Stage::Layer;
+  if (limit.level && schema::stage_level(q.stage) > *limit.level && !first_layer) {
     report("E0302",
            fmt::format("{}, so `{}` ({}) cannot be read here", limit.what, q.name, decided_at(q.stage)),
            fmt::format("one value per {}", schema::level_name(schema::stage_level(q.stage))));

@@ -13,7 +13,6 @@
 #include "geometry/gcode/layer_text.h"
 #include "geometry/gcode/numbers.h"
 #include "geometry/gcode/output_file.h"
-#include "geometry/gcode/templates.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/context_fill.h"
 #include "geometry/toolpath/flow.h"
@@ -135,7 +134,7 @@ class PrintWriter final : public ctx::LineSink {
     for (const auto& isl : layers.front().islands)
       for (const auto& p : isl.shape.outer) pts.push_back(p);
     setup_.skirt_around = convex_hull(pts);
-    // Layer-stage values of layer 0 for the start template ({nozzle_temp}, {bed_temp}).
+    // Layer-stage values of layer 0, which the print's hooks read ({nozzle_temp}, {bed_temp}).
     ctx::Context c0 = c;
     c0.set(FieldId::LayerIndex, 0);
     c0.set(FieldId::LayerZBottom, layers.front().z_bottom);
@@ -222,31 +221,59 @@ class PrintWriter final : public ctx::LineSink {
                        unit.empty() || info.unit == schema::Unit::Ratio ? "" : " ",
                        info.unit == schema::Unit::Ratio ? "" : unit);
     }
+    for (const auto& note : job_.notes) h += fmt::format("; {}\n", note);
     for (const auto& [k, v] : job_.sets) h += fmt::format("; --set {}={}\n", k, v);
     h += fmt::format("; filament_density = {} g/cm3 (for the weight estimate)\n\n", kFilamentDensity);
     if (Status s = write(h); !s) return s;
-    // Start template, then the E mode and print-start executors.
-    std::string file;
-    auto tmpl = load_template(job_.stdlib.empty() ? stdlib_dir() : job_.stdlib, flavor_, "start", &file);
-    if (!tmpl) return tmpl.error();
-    auto start = render_template(*tmpl, file, first_ctx_, first_layer_props_);
-    if (!start) return start.error();
-    std::string s = ";TYPE:Custom\n" + *start;
+    // The start G-code is the `before print` executors (the printer profile's). When it sets
+    // no temperature, the first layer's are set and waited for first, as PrusaSlicer does, so
+    // that a print never starts cold. Then the E mode.
+    if (Status st = write(";TYPE:Custom\n"); !st) return st;
+    std::string start;
+    if (Status st = executors(Level::Print, ctx::When::Before, first_ctx_, first_layer_props_, &start); !st) return st;
+    std::string s;
+    if (!sets_temperatures(start)) {
+      s += fmt::format("M190 S{:g} ; no temperature in the start G-code: heat and wait\n",
+                       first_layer_props_[PropId::BedTemp]);
+      s += fmt::format("M109 S{:g}\n", first_layer_props_[PropId::NozzleTemp]);
+    }
+    s += start;
     s += P[PropId::RelativeE] != 0 ? "M83 ; relative extrusion\n" : "M82 ; absolute extrusion\n";
     s += "G92 E0\n";
     if (Status st = write(s); !st) return st;
-    fan_ = 0;  // the templates end with the fan off
+    fan_ = -1;  // unknown after the start G-code: the first layer sets it
     nozzle_ = first_layer_props_[PropId::NozzleTemp];
     bed_ = first_layer_props_[PropId::BedTemp];
-    return executors(Level::Print, ctx::When::Before, setup_.print_ctx, setup_.print_props);
+    return ok_status();
   }
 
-  Status executors(Level level, ctx::When when, const ctx::Context& c, const ctx::PropertyValues& props) {
+  // Whether start G-code heats the nozzle: a temperature command, or a macro that takes one.
+  static bool sets_temperatures(std::string_view g) {
+    size_t i = 0;
+    while (i < g.size()) {
+      size_t e = g.find('\n', i);
+      std::string_view line = g.substr(i, e == std::string_view::npos ? std::string_view::npos : e - i);
+      line = line.substr(0, line.find(';'));
+      for (std::string_view w : {"M104", "M109", "G10", "PRINT_START", "START_PRINT", "EXTRUDER="})
+        if (line.find(w) != std::string_view::npos) return true;
+      if (e == std::string_view::npos) break;
+      i = e + 1;
+    }
+    return false;
+  }
+
+  // Runs the hook; its text goes to `into` when given, else to the file.
+  Status executors(Level level, ctx::When when, const ctx::Context& c, const ctx::PropertyValues& props,
+                   std::string* into = nullptr) {
     if (!job_.rules.executors || !job_.rules.executors->has(level, when)) return ok_status();
     ctx::Context cc = c;
     cc.set_props(&props);
     pending_.clear();
     if (Status s = job_.rules.executors->run(level, when, cc, *this); !s) return s;
+    if (into) {
+      *into += pending_;
+      return ok_status();
+    }
     return write(pending_);
   }
 
@@ -408,19 +435,15 @@ class PrintWriter final : public ctx::LineSink {
 
   Status footer() {
     const auto& P = setup_.print_props;
-    if (Status s = executors(Level::Print, ctx::When::After, setup_.print_ctx, setup_.print_props); !s)
-      return s;
-    std::string file;
-    auto tmpl = load_template(job_.stdlib.empty() ? stdlib_dir() : job_.stdlib, flavor_, "end", &file);
-    if (!tmpl) return tmpl.error();
-    auto end = render_template(*tmpl, file, setup_.print_ctx, setup_.print_props);
-    if (!end) return end.error();
+    // The end G-code: the `after print` executors (the printer profile's).
+    if (Status s = write(";TYPE:Custom\n"); !s) return s;
+    if (Status s = executors(Level::Print, ctx::When::After, first_ctx_, first_layer_props_); !s) return s;
     summary_.filament_cm3 =
         summary_.filament_mm * toolpath::filament_area_mm2(P[PropId::FilamentDiameter]) / 1000.0;
     summary_.filament_g = summary_.filament_cm3 * kFilamentDensity;
     std::string time = format_duration(summary_.time_s);
     std::string f;
-    f += ";TYPE:Custom\n" + *end + "\n";
+    f += "\n";
     f += fmt::format("; filament used [mm] = {:.2f}\n", summary_.filament_mm);
     f += fmt::format("; filament used [cm3] = {:.2f}\n", summary_.filament_cm3);
     f += fmt::format("; filament used [g] = {:.2f}\n", summary_.filament_g);

@@ -1,7 +1,8 @@
 // The print level of the slicing loop: decides the print's properties once, then runs every
 // layer through plan (parallel) → G-code text (parallel) → file (in order) with TBB's
-// pipeline, so only a few layers' toolpaths exist at a time, and writes the header, the
-// start/end templates and the footer. The file appears only when complete (OutputFile).
+// pipeline, so only a few layers' toolpaths exist at a time, and writes the header, the start
+// G-code (the `before print` executors: the printer profile's), the end G-code (`after print`)
+// and the footer. The file appears only when complete (OutputFile).
 #pragma once
 
 #include <span>
@@ -24,7 +25,7 @@ struct GcodeJob {
   double model_volume_mm3 = 0;  // for print.volume
   geo::BBox2 model_box;         // XY extent centred on the bed; empty: the layers' extent
   std::vector<std::pair<std::string, std::string>> sets;  // --set as given, for the header
-  std::string stdlib;                                     // empty: stdlib_dir()
+  std::vector<std::string> notes;                         // more header lines (profile, rules files)
   int threads = 0;                                        // 0: TBB's default
 };
 

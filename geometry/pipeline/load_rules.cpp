@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <tuple>
 #include <fstream>
 #include <sstream>
 
@@ -25,14 +28,31 @@ std::optional<std::string> read_all(const std::string& path) {
   return ss.str();
 }
 
-// Compiles `.rules` files (and --set expressions) as one program.
-Result<vm::Program> compile(const std::vector<std::string>& files,
+// A `use` target for --printer/--material: a stdlib name, or a path to a file.
+std::string use_target(const std::string& kind, const std::string& name) {
+  bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
+  if (!path) return kind + "/" + name;
+  std::error_code ec;
+  return std::filesystem::absolute(name, ec).string();
+}
+
+// The profile as a tiny source of `use` lines, compiled first.
+std::string profile_source(const RulesInput& in) {
+  std::string s = "use \"defaults\"\n";
+  if (!in.printer.empty() && in.printer != "none") s += "use \"" + use_target("printers", in.printer) + "\"\n";
+  if (!in.material.empty() && in.material != "none") s += "use \"" + use_target("materials", in.material) + "\"\n";
+  return s;
+}
+
+// Compiles `.rules` files (and --set expressions) as one program; `profile` first when set.
+Result<vm::Program> compile(const std::string* profile, const std::vector<std::string>& files,
                             const std::vector<std::pair<std::string, std::string>>& sets,
                             const std::string& stdlib_dir, Report& report) {
   compiler::FrontendOptions options;
   options.stdlib_dir = stdlib_dir;
   diag::Sink sink;
   ast::Program program;
+  if (profile) compiler::load_source(program, "--printer/--material profile", *profile, options, sink);
   for (const auto& f : files) compiler::load_file(program, f, options, sink);
   for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
   if (compiler::check(program, sink) && !sink.has_errors()) compiler::lint(program, sink);
@@ -53,7 +73,7 @@ Result<vm::Program> compile(const std::vector<std::string>& files,
     }
   }
   if (sink.has_errors()) {
-    std::string what = files.empty() ? std::string("--set") : where.empty() ? files.front() : where;
+    std::string what = !where.empty() ? where : !files.empty() ? files.front() : profile ? std::string("profile") : std::string("--set");
     std::string more = sink.errors() > 1 ? fmt::format("\n({} errors in all; `rulec check` lists them)", sink.errors())
                                          : std::string();
     return Error{what, fmt::format("the rules have errors; nothing was sliced\n{}{}", first, more)};
@@ -63,19 +83,53 @@ Result<vm::Program> compile(const std::vector<std::string>& files,
 
 }  // namespace
 
+// --printer/--material NAME must exist: say which ones do.
+Status check_profile(const RulesInput& in) {
+  compiler::FrontendOptions options;
+  options.stdlib_dir = in.stdlib_dir;
+  namespace fs = std::filesystem;
+  fs::path dir = compiler::stdlib_dir(options);
+  if (dir.empty())
+    return Error{"stdlib", "cannot find the stdlib folder (defaults.rules, printers/, materials/); pass --stdlib DIR "
+                           "or set TRANCHE_STDLIB"};
+  for (auto [flag, kind, name] : {std::tuple{"--printer", "printers", in.printer}, std::tuple{"--material", "materials", in.material}}) {
+    if (name.empty() || name == "none") continue;
+    std::error_code ec;
+    bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
+    if (path ? fs::is_regular_file(name, ec) : fs::is_regular_file(dir / kind / (name + ".rules"), ec)) continue;
+    std::vector<std::string> have;
+    for (const auto& e : fs::directory_iterator(dir / kind, ec))
+      if (e.path().extension() == ".rules") have.push_back(e.path().stem().string());
+    std::sort(have.begin(), have.end());
+    std::string list;
+    for (const auto& h : have) list += (list.empty() ? "" : ", ") + h;
+    return Error{flag, path ? fmt::format("cannot read {}", name)
+                            : fmt::format("no {} `{}` in {}; there are: {} (or give a path to a .rules file, or none)",
+                                          kind == std::string("printers") ? "printer" : "material", name,
+                                          (dir / kind).string(), list)};
+  }
+  return ok_status();
+}
+
 Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Report& report) {
-  if (in.files.empty() && in.expressions.empty()) return std::shared_ptr<const vm::RuleSet>();
+  if (!in.profile && in.files.empty() && in.expressions.empty()) return std::shared_ptr<const vm::RuleSet>();
+  if (in.profile)
+    if (Status s = check_profile(in); !s) return s.error();
   std::vector<vm::Program> programs;
   std::vector<std::string> names;
   std::vector<std::string> pending;  // consecutive .rules files
+  const std::string profile = in.profile ? profile_source(in) : std::string();
+  bool profile_done = !in.profile;
   auto flush = [&](bool with_sets) -> Status {
-    if (pending.empty() && !with_sets) return ok_status();
-    auto p = compile(pending, with_sets ? in.expressions : std::vector<std::pair<std::string, std::string>>{},
-                     in.stdlib_dir, report);
+    if (pending.empty() && !with_sets && profile_done) return ok_status();
+    auto p = compile(profile_done ? nullptr : &profile, pending,
+                     with_sets ? in.expressions : std::vector<std::pair<std::string, std::string>>{}, in.stdlib_dir,
+                     report);
     if (!p) return p.error();
     programs.push_back(std::move(*p));
-    names.push_back(pending.empty() ? "--set" : pending.back());
+    names.push_back(!pending.empty() ? pending.back() : !profile_done ? "profile" : "--set");
     pending.clear();
+    profile_done = true;
     return ok_status();
   };
   for (const auto& f : in.files) {

@@ -17,12 +17,17 @@
 namespace tranche::pipeline {
 
 struct RulesInput {
+  // The profile below the user's rules: stdlib/defaults.rules, then the printer and the material
+  // (stdlib names like `generic-marlin`, or paths to .rules files; "none" for neither).
+  bool profile = true;
+  std::string printer = "generic-marlin";
+  std::string material = "pla";
   std::vector<std::string> files;                                // --rules, in order
   std::vector<std::pair<std::string, std::string>> expressions;  // --set whose value is not a plain value
   std::string stdlib_dir;                                        // empty: the default places
 };
 
-// Null when there is nothing to run. Errors: the first compile error, rendered as `rulec check`
+// Null when there is nothing to run (no profile, no files, no expressions). Errors: the first compile error, rendered as `rulec check`
 // does (file:line:col, the line, the caret, help), with the number of errors; a damaged or
 // foreign bundle; a run-time limit of linking. Lint warnings go to `report`.
 Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& input, Report& report);

@@ -170,6 +170,10 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
     job.model_volume_mm3 = model.volume_mm3;
     job.model_box = model.box;
     job.sets = options.sets;
+    if (options.profile)
+      job.notes.push_back(fmt::format("profile: stdlib defaults, printer {}, material {}", options.printer,
+                                      options.material));
+    for (const auto& r : options.rules) job.notes.push_back("rules: " + r);
     auto g = gcode::write_gcode(job, report);
     if (!g) return g.error();
     progress.finish(fmt::format("{} layers, {:.2f} m of filament, {}", g->layers, g->filament_mm / 1000,
@@ -205,6 +209,10 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   // (`--set fill_angle="15 deg * layer.index"`) is compiled as an implicit last rule.
   std::vector<std::pair<std::string, std::string>> plain;
   RulesInput rules_in;
+  rules_in.profile = options.profile;
+  rules_in.printer = options.printer;
+  rules_in.material = options.material;
+  rules_in.stdlib_dir = options.stdlib_dir;
   rules_in.files = options.rules;
   for (const auto& [k, v] : options.sets) {
     if (!ctx::parse_override(k, v) && schema::find_property(k))

@@ -18,6 +18,10 @@ struct SliceOptions {
   std::string model;                        // STL or SVG path
   std::string output_gcode;                 // -o; empty = no G-code
   std::vector<std::string> rules;           // --rules, in cascade order
+  std::string printer = "generic-marlin";   // --printer: stdlib/printers/NAME.rules or a file; "none"
+  std::string material = "pla";             // --material: stdlib/materials/NAME.rules or a file; "none"
+  bool profile = true;                      // false: no stdlib profile (library tests)
+  std::string stdlib_dir;                   // --stdlib: where `use "printers/..."` looks first
   std::vector<std::pair<std::string, std::string>> sets;  // --set key=value, in order
   std::string export_svg;                   // --export-svg
   std::string export_layers;                // --export-layers (JSON)

@@ -1,10 +1,15 @@
 // Bundles (write, read, verify), the verifier on hand-made bad programs, and linking.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
 
 #include "runtime/vm/bundle.h"
 #include "runtime/vm/link.h"
 #include "runtime/vm/verify.h"
 #include "tests/compiler/vm_helpers.h"
+#include "tests/support/fixtures.h"
 
 using namespace tranche;
 using schema::FieldId;
@@ -180,4 +185,42 @@ TEST_CASE("link: properties that read each other across files are refused") {
   auto r = vm::link({std::move(c), std::move(d)}, {"c", "d"});
   REQUIRE_FALSE(r.ok());
   CHECK(r.error().message.find("read each other") != std::string::npos);
+}
+
+TEST_CASE("docs/bundles.md lists every opcode with the operand kinds of opcodes.def") {
+  std::ifstream in(test::source_dir() / "docs" / "bundles.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  REQUIRE_FALSE(doc.empty());
+  auto letter = [](vm::Operand k) {
+    switch (k) {
+      case vm::Operand::None: return '_';
+      case vm::Operand::Reg: return 'R';
+      case vm::Operand::Const: return 'K';
+      case vm::Operand::Field: return 'F';
+      case vm::Operand::Prop: return 'P';
+      case vm::Operand::Jump: return 'J';
+      case vm::Operand::String: return 'S';
+      case vm::Operand::Rule: return 'N';
+      case vm::Operand::Enum: return 'E';
+      case vm::Operand::Coll: return 'C';
+      case vm::Operand::Member: return 'M';
+      case vm::Operand::Decimals: return 'D';
+      case vm::Operand::LayerOffset: return 'O';
+      case vm::Operand::MoveFlags: return 'X';
+    }
+    return '?';
+  };
+  for (int op = 0; op < vm::kOpCount; ++op) {
+    const auto& info = vm::op_info(static_cast<vm::Op>(op));
+    std::string m = info.mnemonic;
+    if (m.find('.') != std::string::npos) {  // fused: listed as a family
+      CHECK_MESSAGE(doc.find("`" + m + "`") != std::string::npos, m);
+      continue;
+    }
+    std::string row = fmt::format("| `{}` | {} | {} | {} | {} |", m, letter(info.a), letter(info.b), letter(info.c),
+                                  letter(info.d));
+    CHECK_MESSAGE(doc.find(row) != std::string::npos, row);
+  }
 }

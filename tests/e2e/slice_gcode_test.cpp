@@ -41,9 +41,10 @@ std::string write_mesh(const test::TempDir& dir, const std::string& name, const 
 // Slices `mesh` with the given --set options into dir/NAME.gcode and re-slices the mesh the same
 // way for the geometric checks.
 Sliced slice(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
-             std::vector<std::pair<std::string, std::string>> sets = {}) {
+             std::vector<std::pair<std::string, std::string>> sets = {}, const std::string& printer = "generic-marlin") {
   pipeline::SliceOptions o;
   o.quiet = true;
+  o.printer = printer;
   o.model = write_mesh(dir, name + ".stl", mesh);
   o.output_gcode = (dir / (name + ".gcode")).string();
   o.sets = std::move(sets);
@@ -264,13 +265,13 @@ SCENARIO("--set changes what it should") {
       CHECK_FALSE(s.gcode.contains("M106 S255"));
     }
   }
-  WHEN("the flavour is klipper and the temperatures change") {
-    auto s = slice(dir, "klipper", cube,
-                   {{"skirt_loops", "0"}, {"gcode_flavor", "klipper"}, {"nozzle_temp", "225C"}});
-    THEN("the klipper template and the new temperature are used") {
+  WHEN("the printer is a Klipper one and the temperatures change") {
+    auto s = slice(dir, "klipper", cube, {{"skirt_loops", "0"}, {"nozzle_temp", "225C"}}, "klipper");
+    THEN("the printer's start macro gets the new temperature") {
       CHECK(s.gcode.contains(";FLAVOR:Klipper"));
-      CHECK(s.gcode.contains("PRINT_START"));
-      CHECK(s.gcode.contains("M109 S225"));
+      CHECK(s.gcode.contains("PRINT_START BED=60 EXTRUDER=225"));
+      CHECK(s.gcode.contains("PRINT_END"));
+      CHECK_FALSE(s.gcode.contains("M109"));  // the macro heats
     }
   }
   WHEN("skirt_loops is 2") {
@@ -303,20 +304,19 @@ SCENARIO("relative and absolute E describe the same extrusion") {
 
 SCENARIO("a failing write leaves no file behind") {
   test::TempDir dir("e2e-fail");
-  // A template with an unknown placeholder fails after the header is already written.
-  fs::create_directories(dir / "stdlib" / "gcode" / "marlin");
-  std::ofstream(dir / "stdlib" / "gcode" / "marlin" / "start.gcode") << "G28\n";
-  std::ofstream(dir / "stdlib" / "gcode" / "marlin" / "end.gcode") << "M104 S{nozle_temp}\n";
-  ::setenv("TRANCHE_STDLIB", (dir / "stdlib").c_str(), 1);
+  // The end G-code fails (a division by zero at run time) after everything else is written.
+  std::ofstream(dir / "late.rules") << "rule { after print { gcode \"M117 {1 mm / (print.height - print.height)}\" } }\n";
   pipeline::SliceOptions o;
   o.quiet = true;
   o.model = write_mesh(dir, "cube.stl", geo::box({10, 10, 2}));
   o.output_gcode = (dir / "out.gcode").string();
+  o.rules = {(dir / "late.rules").string()};
   GIVEN("no earlier output") {
     Report report;
     auto r = pipeline::run_slice(o, report);
     REQUIRE_FALSE(r.ok());
-    CHECK(r.error().where.find("end.gcode:1") != std::string::npos);
+    CHECK(r.error().where.find("late.rules:1:") != std::string::npos);
+    CHECK(r.error().message.find("division by zero") != std::string::npos);
     CHECK_FALSE(fs::exists(o.output_gcode));
   }
   GIVEN("an earlier output") {
@@ -328,11 +328,10 @@ SCENARIO("a failing write leaves no file behind") {
     std::getline(in, first);
     CHECK(first == "; the previous print");  // untouched
   }
-  ::unsetenv("TRANCHE_STDLIB");
   int others = 0;
   for (const auto& e : fs::directory_iterator(dir.path())) {
     std::string n = e.path().filename().string();
-    if (n != "stdlib" && n != "cube.stl" && n != "out.gcode") ++others;  // no temporaries
+    if (n != "late.rules" && n != "cube.stl" && n != "out.gcode") ++others;  // no temporaries
   }
   CHECK(others == 0);
 }

@@ -9,7 +9,6 @@
 #include "geometry/gcode/numbers.h"
 #include "geometry/gcode/output_file.h"
 #include "geometry/gcode/print.h"
-#include "geometry/gcode/templates.h"
 #include "runtime/context/defaults.h"
 #include "runtime/context/overrides.h"
 #include "tests/support/fixtures.h"
@@ -92,28 +91,6 @@ TEST_CASE("output file: nothing at the destination until commit; no leftovers on
   CHECK(bad.error().message.find("does not exist") != std::string::npos);
 }
 
-TEST_CASE("templates: placeholders from properties and fields, clear errors") {
-  ctx::Context c;
-  c.set(schema::FieldId::PrintHeight, 12.5);
-  auto props = ctx::PropertyValues::schema_defaults();
-  props[schema::PropId::NozzleTemp] = 215;
-  auto r = render_template("M104 S{nozzle_temp}\n; h={print.height} {{x}}", "t.gcode", c, props);
-  REQUIRE(r.ok());
-  CHECK(*r == "M104 S215\n; h=12.5 {x}\n");
-  auto e = render_template("ok\nM104 S{nozle_temp}\n", "t.gcode", c, props);
-  REQUIRE_FALSE(e.ok());
-  CHECK(e.error().where == "t.gcode:2");
-  CHECK(e.error().message.find("nozzle_temp") != std::string::npos);
-  CHECK_FALSE(render_template("M104 S{nozzle_temp", "t.gcode", c, props).ok());
-  for (auto f : {schema::Flavor::Marlin, schema::Flavor::Klipper, schema::Flavor::RepRapFirmware}) {
-    std::string file;
-    auto t = load_template((test::source_dir() / "stdlib").string(), f, "start", &file);
-    REQUIRE_MESSAGE(t.ok(), file);
-    CHECK(render_template(*t, file, c, props).ok());
-    CHECK(load_template((test::source_dir() / "stdlib").string(), f, "end").ok());
-  }
-}
-
 // A file the tests read locally but git ignores is missing from every clean clone (CI broke so,
 // on stdlib/gcode/*.gcode and a `*.gcode` ignore pattern).
 TEST_CASE("stdlib: no shipped file is ignored by git") {
@@ -145,7 +122,6 @@ TEST_CASE("write_gcode: a small cube gives a complete file with header values fi
   job.layers = layers;
   job.rules.defaults = &defaults;
   job.rules.decider = &*over;
-  job.stdlib = (test::source_dir() / "stdlib").string();
   Report report;
   auto r = write_gcode(job, report);
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
@@ -165,7 +141,11 @@ TEST_CASE("write_gcode: a small cube gives a complete file with header values fi
   std::string value = g.substr(footer + 23, g.find('\n', footer) - footer - 23);
   CHECK(g.find("; filament used [mm] = " + value) < 300);
   CHECK(g.find("; estimated printing time (normal mode) = " + format_duration(r->time_s)) < 200);
-  // Fan: off on layer 0 (the template's M107), on from layer 1.
+  // No rules, so no start G-code: the first layer's temperatures are set and waited for.
+  CHECK(g.find("M190 S60 ;") < g.find("M82"));
+  CHECK(g.find("M109 S210") < g.find("M82"));
+  // Fan: off on layer 0 (the built-in defaults), on from layer 1.
+  CHECK(g.find("M107") < g.find(";LAYER:1\n"));
   CHECK(g.find("M106 S255") > g.find(";LAYER:1\n"));
   CHECK(g.find("M106 S255") < g.find(";LAYER:2\n"));
 }
