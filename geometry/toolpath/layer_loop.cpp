@@ -343,6 +343,7 @@ Status LayerTask::island_content(IslandPlan& ip) {
   spec.fill_width = (*fill_props)[PropId::Width];
   spec.height = height_;
   spec.infill_overlap = P[PropId::InfillOverlap];
+  spec.min_feature = P[PropId::NozzleDiameter] / 3;
   Perimeters per = make_perimeters(ip.shape, spec);
   for (auto& loop : per.loops) {
     PathPlan p;

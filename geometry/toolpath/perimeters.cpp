@@ -41,9 +41,13 @@ struct Steiner {
 namespace {
 // An island thinner than one bead: a single loop around its core (the island shrunk by a
 // quarter bead, or the island itself when that leaves nothing), its flow scaled so that the
-// plastic laid equals the island's area times the layer height.
-Perimeters& thin_wall(const geo::Rings& island, const PerimeterSpec& spec, Perimeters& out) {
+// plastic laid equals the island's area times the layer height. Parts narrower than the
+// minimum feature (a cone's tip, an ear's last layer) are dropped: a loop of nozzle-wide beads
+// around them would put most of its plastic outside the part.
+Perimeters& thin_wall(const geo::Rings& whole, const PerimeterSpec& spec, Perimeters& out) {
   double w = spec.widths.front();
+  geo::Rings island = spec.min_feature > 0 ? offset_open(whole, 0, 0.5 * spec.min_feature) : whole;
+  if (island.empty()) return out;
   geo::Rings core = offset(island, -0.25 * w);
   if (core.empty()) core = island;
   double len = 0;

@@ -20,7 +20,8 @@ struct Loop {
   int depth = 0;   // 0 = outer perimeter
   bool hole = false;
   // Below 1 for a thin wall: an island too thin for any loop is printed as one loop around
-  // its core with the flow scaled so that the plastic matches the island's area.
+  // its core with the flow scaled so that the plastic matches the island's area (its parts
+  // narrower than PerimeterSpec::min_feature left out).
   double flow_scale = 1.0;
 };
 
@@ -29,6 +30,9 @@ struct PerimeterSpec {
   double fill_width = 0.45;                   // mm, width of the infill that meets the innermost loop
   double height = 0.2;                        // mm, layer height
   double infill_overlap = 0.15;               // ratio of fill_width the fill region reaches into the loops
+  // mm: parts of a thin island narrower than this are not printed (a nozzle cannot lay a bead
+  // that thin; PrusaSlicer's thin walls use nozzle / 3 too).
+  double min_feature = 0.4 / 3;
 };
 
 struct Perimeters {

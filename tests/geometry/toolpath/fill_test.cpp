@@ -199,3 +199,22 @@ TEST_CASE("perimeters: an island thinner than a bead is a thin wall with its flo
   CHECK(geo::length_mm(l.ring) * s * l.flow_scale == Approx(3.0).epsilon(0.01));
   CHECK(per.fill_region.empty());
 }
+
+TEST_CASE("perimeters: a thin island's parts narrower than the minimum feature are not printed") {
+  // A cone's tip or an ear's last layer: a speck 0.1 mm across gets no loop at all (a loop of
+  // 0.45 mm beads around it would lay its plastic outside the part).
+  PerimeterSpec spec;
+  spec.min_feature = 0.4 / 3;
+  CHECK(make_perimeters(geo::Rings{test::rect(0, 0, 0.1, 0.1)}, spec).loops.empty());
+  CHECK(make_perimeters(geo::Rings{test::rect(0, 0, 10, 0.1)}, spec).loops.empty());
+  // A 0.3 mm sliver with a 0.1 mm whisker: the sliver is kept, the whisker's plastic is not counted.
+  geo::Ring t{geo::to_point(0, 0),      geo::to_point(10, 0),   geo::to_point(10, 0.3),
+              geo::to_point(5.05, 0.3), geo::to_point(5.05, 3), geo::to_point(4.95, 3),
+              geo::to_point(4.95, 0.3), geo::to_point(0, 0.3)};
+  auto per = make_perimeters(geo::Rings{t}, spec);
+  REQUIRE(per.loops.size() == 1);
+  const auto& l = per.loops[0];
+  double s = 0.45 - 0.2 * (1 - M_PI / 4);
+  CHECK(geo::length_mm(l.ring) * s * l.flow_scale == doctest::Approx(3.0).epsilon(0.02));
+  for (const auto& p : l.ring) CHECK(geo::to_mm(p.Y) < 0.31);
+}
