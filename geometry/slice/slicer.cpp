@@ -77,12 +77,21 @@ double dist(const Point& p, const Point& q) {
 
 struct Candidate {
   double d;
-  uint32_t from, to;  // chain `from`'s end to chain `to`'s start
-  // Nearest first; at equal distance another chain before the chain's own start (a chain closed
-  // on itself across a hole is usually a sliver).
+  uint32_t from, to;       // chain `from`'s end to chain `to`'s start
+  bool other_rim = false;  // the two ends do not lie on the same hole of the mesh
+  // Ends on the same hole first, then nearest first; at equal distance another chain before the
+  // chain's own start (a chain closed on itself across a hole is usually a sliver).
   bool operator<(const Candidate& o) const {
-    return std::tuple(d, from == to, from, to) < std::tuple(o.d, o.from == o.to, o.from, o.to);
+    return std::tuple(other_rim, d, from == to, from, to) <
+           std::tuple(o.other_rim, o.d, o.from == o.to, o.from, o.to);
   }
+};
+
+// An open chain and the mesh holes (rims) its two ends lie on (kNone: not on a hole, e.g. at a
+// flipped triangle).
+struct Chain {
+  Ring pts;
+  uint32_t front_rim = kNone, back_rim = kNone;
 };
 
 // Greedy matching of ends to starts, nearest pair first: next[i] = the chain after chain i.
@@ -96,14 +105,16 @@ void match(std::vector<Candidate>& cand, std::vector<uint32_t>& next, std::vecto
 }
 
 // Concatenates chains along `next` from `head` (marking them done).
-Ring follow(const std::vector<Ring>& chains, const std::vector<uint32_t>& next, uint32_t head,
-            std::vector<char>& done) {
-  Ring ring;
+Chain follow(const std::vector<Chain>& chains, const std::vector<uint32_t>& next, uint32_t head,
+             std::vector<char>& done) {
+  Chain out;
+  out.front_rim = chains[head].front_rim;
   for (uint32_t c = head; c != kNone && !done[c]; c = next[c]) {
     done[c] = 1;
-    ring.insert(ring.end(), chains[c].begin(), chains[c].end());
+    out.pts.insert(out.pts.end(), chains[c].pts.begin(), chains[c].pts.end());
+    out.back_rim = chains[c].back_rim;
   }
-  return ring;
+  return out;
 }
 
 // Beyond this many open chains in one layer (after joining small gaps) every chain is closed on
@@ -111,38 +122,40 @@ Ring follow(const std::vector<Ring>& chains, const std::vector<uint32_t>& next, 
 constexpr size_t kMaxMatchedChains = 512;
 
 // Closes open chains into loops. First, ends closer than `tol` (units) to a start are joined,
-// nearest pair first, silently. Then the chains still open are joined end → start, again nearest
-// pair first, whatever the distance (a chain's own start is a candidate too): each such joint is
-// a straight edge across a hole in the mesh, recorded for an "open-loop" warning.
-void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& out) {
+// nearest pair first, silently. Then the chains still open are joined end → start whatever the
+// distance (a chain's own start is a candidate too), ends on the same hole of the mesh first
+// (the plane crosses a hole's rim an even number of times: its crossings belong together),
+// then nearest pair first: each such joint is a straight edge across a hole in the mesh,
+// recorded for an "open-loop" warning.
+void close_gaps(std::vector<Chain>& chains, double tol, Rings& loops, LayerOut& out) {
   const size_t n = chains.size();
+  auto front = [&](uint32_t c) -> const Point& { return chains[c].pts.front(); };
   std::vector<uint32_t> by_x(n);
   for (uint32_t i = 0; i < n; ++i) by_x[i] = i;
-  std::sort(by_x.begin(), by_x.end(), [&](uint32_t a, uint32_t b) {
-    return std::tie(chains[a].front().X, a) < std::tie(chains[b].front().X, b);
-  });
+  std::sort(by_x.begin(), by_x.end(),
+            [&](uint32_t a, uint32_t b) { return std::tie(front(a).X, a) < std::tie(front(b).X, b); });
   std::vector<Candidate> cand;
   for (uint32_t i = 0; i < n; ++i) {
-    const Point& e = chains[i].back();
+    const Point& e = chains[i].pts.back();
     auto lo = std::lower_bound(by_x.begin(), by_x.end(), e.X - static_cast<coord_t>(tol),
-                               [&](uint32_t c, coord_t x) { return chains[c].front().X < x; });
-    for (auto it = lo; it != by_x.end() && chains[*it].front().X <= e.X + static_cast<coord_t>(tol); ++it) {
-      double d = dist(e, chains[*it].front());
+                               [&](uint32_t c, coord_t x) { return front(c).X < x; });
+    for (auto it = lo; it != by_x.end() && front(*it).X <= e.X + static_cast<coord_t>(tol); ++it) {
+      double d = dist(e, front(*it));
       if (d <= tol) cand.push_back({d, i, *it});
     }
   }
   std::vector<uint32_t> next(n, kNone), prev(n, kNone);
   match(cand, next, prev);
   for (uint32_t i = 0; i < n; ++i)
-    if (next[i] != kNone && dist(chains[i].back(), chains[next[i]].front()) > 0) ++out.gaps_joined;
+    if (next[i] != kNone && dist(chains[i].pts.back(), front(next[i])) > 0) ++out.gaps_joined;
 
   // Cycles are done; paths (heads without a predecessor) go on to the second round.
   std::vector<char> done(n, 0);
-  std::vector<Ring> paths;
+  std::vector<Chain> paths;
   for (uint32_t i = 0; i < n; ++i)
     if (prev[i] == kNone) paths.push_back(follow(chains, next, i, done));
   for (uint32_t i = 0; i < n; ++i)
-    if (!done[i]) loops.push_back(follow(chains, next, i, done));
+    if (!done[i]) loops.push_back(follow(chains, next, i, done).pts);
   if (paths.empty()) return;
 
   const size_t k = paths.size();
@@ -150,14 +163,18 @@ void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& o
   cand.clear();
   if (k <= kMaxMatchedChains) {
     for (uint32_t i = 0; i < k; ++i)
-      for (uint32_t j = 0; j < k; ++j) cand.push_back({dist(paths[i].back(), paths[j].front()), i, j});
+      for (uint32_t j = 0; j < k; ++j) {
+        const uint32_t rim = paths[i].back_rim;
+        cand.push_back({dist(paths[i].pts.back(), paths[j].pts.front()), i, j,
+                        rim == kNone || rim != paths[j].front_rim});
+      }
   } else {
     for (uint32_t i = 0; i < k; ++i) cand.push_back({0, i, i});
   }
   match(cand, next2, prev2);
   for (uint32_t i = 0; i < k; ++i) {
-    const Point& from = paths[i].back();
-    const Point& to = paths[next2[i]].front();
+    const Point& from = paths[i].pts.back();
+    const Point& to = paths[next2[i]].pts.front();
     if (dist(from, to) > tol)
       out.open.push_back({from, to});
     else if (dist(from, to) > 0)
@@ -165,7 +182,7 @@ void close_gaps(std::vector<Ring>& chains, double tol, Rings& loops, LayerOut& o
   }
   std::vector<char> done2(k, 0);
   for (uint32_t i = 0; i < k; ++i)
-    if (!done2[i]) loops.push_back(follow(paths, next2, i, done2));
+    if (!done2[i]) loops.push_back(follow(paths, next2, i, done2).pts);
 }
 
 // Removes repeated consecutive points (a cut through a vertex can round onto its neighbour) and
@@ -231,7 +248,12 @@ LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t*
   };
 
   Rings loops;
-  std::vector<Ring> open;
+  std::vector<Chain> open;
+  // The hole an open chain's end lies on: the rim of a boundary edge, or of a vertex on the plane.
+  auto rim = [&](uint64_t key) {
+    const auto id = static_cast<uint32_t>(key >> 1);
+    return key & 1 ? topo.vertex_rim(id) : topo.edge_rim(id);
+  };
   for (uint32_t s0 = 0; s0 < s.segs.size(); ++s0) {
     if (s.used[s0]) continue;
     Ring pts{s.segs[s0].a};
@@ -253,7 +275,7 @@ LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t*
       loops.push_back(std::move(pts));
     } else {
       pts.push_back(s.segs[cur].b);
-      open.push_back(std::move(pts));
+      open.push_back({std::move(pts), rim(s.segs[s0].from), rim(s.segs[cur].to)});
     }
   }
   for (size_t i = 0; i < n_tris; ++i) s.seg_of_tri[tris[i]] = kNone;

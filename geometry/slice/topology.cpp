@@ -6,6 +6,44 @@
 
 namespace tranche::geo {
 
+namespace {
+
+// Union-find over the vertices of boundary edges: each connected set of them is one rim.
+void find_rims(MeshTopology& topo) {
+  std::vector<uint32_t> verts;
+  for (const auto& e : topo.edges)
+    if (e.count == 1) verts.push_back(e.v0), verts.push_back(e.v1);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  auto index = [&](uint32_t v) {
+    return static_cast<uint32_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
+  std::vector<uint32_t> parent(verts.size());
+  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto root = [&](uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& e : topo.edges)
+    if (e.count == 1) {
+      uint32_t a = root(index(e.v0)), b = root(index(e.v1));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  // Rims numbered by their lowest vertex, in order.
+  std::vector<uint32_t> rim(verts.size(), MeshTopology::kNone);
+  uint32_t rims = 0;
+  topo.vertex_rims.reserve(verts.size());
+  for (uint32_t i = 0; i < verts.size(); ++i) {
+    uint32_t r = root(i);
+    if (rim[r] == MeshTopology::kNone) rim[r] = rims++;
+    topo.vertex_rims.emplace_back(verts[i], rim[r]);
+  }
+  for (uint32_t id = 0; id < topo.edges.size(); ++id)
+    if (topo.edges[id].count == 1) topo.edge_rims.emplace_back(id, rim[root(index(topo.edges[id].v0))]);
+}
+
+}  // namespace
+
 MeshTopology build_topology(const Mesh& mesh) {
   MeshTopology topo;
   const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
@@ -74,6 +112,7 @@ MeshTopology build_topology(const Mesh& mesh) {
       i = j;
     }
   }
+  if (topo.boundary_edges > 0) find_rims(topo);
   return topo;
 }
 

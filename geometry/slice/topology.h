@@ -2,6 +2,7 @@
 // segments into loops without comparing coordinates.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -29,10 +30,24 @@ struct MeshTopology {
   std::vector<Edge> edges;
   std::vector<Links> triangles;
 
+  // Holes: the boundary edges grouped into rims (connected through shared vertices), so that
+  // slicing joins a hole's crossings with each other. Sorted by id; empty for a closed mesh.
+  std::vector<std::pair<uint32_t, uint32_t>> edge_rims;    // (boundary edge id, rim)
+  std::vector<std::pair<uint32_t, uint32_t>> vertex_rims;  // (vertex id on a boundary edge, rim)
+  // The rim of a boundary edge or vertex, kNone when it lies on no hole.
+  uint32_t edge_rim(uint32_t edge) const { return find(edge_rims, edge); }
+  uint32_t vertex_rim(uint32_t vertex) const { return find(vertex_rims, vertex); }
+
   size_t boundary_edges = 0;        // used by one triangle: the mesh has a hole there
   size_t nonmanifold_edges = 0;     // used by three or more triangles
   size_t misoriented_edges = 0;     // two triangles traversing the edge the same way (one is flipped)
   size_t degenerate_triangles = 0;  // a vertex id repeated
+
+ private:
+  static uint32_t find(const std::vector<std::pair<uint32_t, uint32_t>>& v, uint32_t id) {
+    auto it = std::lower_bound(v.begin(), v.end(), std::pair<uint32_t, uint32_t>(id, 0));
+    return it != v.end() && it->first == id ? it->second : kNone;
+  }
 };
 
 // O(vertices + triangles) time and memory.

@@ -87,6 +87,39 @@ double loops_area(const Layer& l) {
   return a;
 }
 
+// A 30 × 30 × 10 box made of 1 mm squares (two triangles each), without the squares of two
+// windows: A in the y = 0 wall at x 2..13, B in the x = 0 wall at y 3..28, both at z 2..8.
+Mesh box_with_windows() {
+  Mesh m;
+  // A face of nu × nv unit squares from o along u and v, its outside towards u × v.
+  auto face = [&](Vec3 o, Vec3 u, Vec3 v, int nu, int nv, auto window) {
+    auto at = [&](int i, int j) {
+      return Vec3{o.x + i * u.x + j * v.x, o.y + i * u.y + j * v.y, o.z + i * u.z + j * v.z};
+    };
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) {
+        if (window(at(i, j), at(i + 1, j + 1))) continue;
+        auto id = static_cast<uint32_t>(m.vertices.size());
+        m.vertices.insert(m.vertices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        m.triangles.push_back({id, id + 1, id + 2});
+        m.triangles.push_back({id, id + 2, id + 3});
+      }
+  };
+  auto none = [](Vec3, Vec3) { return false; };
+  auto in = [](double a, double b, double lo, double hi) {
+    return std::min(a, b) >= lo && std::max(a, b) <= hi;
+  };
+  auto window_a = [&](Vec3 p, Vec3 q) { return in(p.x, q.x, 2, 13) && in(p.z, q.z, 2, 8); };
+  auto window_b = [&](Vec3 p, Vec3 q) { return in(p.y, q.y, 3, 28) && in(p.z, q.z, 2, 8); };
+  face({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, 30, 30, none);      // bottom, outside -z
+  face({0, 0, 10}, {1, 0, 0}, {0, 1, 0}, 30, 30, none);     // top, +z
+  face({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 30, 10, window_a);  // y = 0, -y
+  face({0, 30, 0}, {0, 0, 1}, {1, 0, 0}, 10, 30, none);     // y = 30, +y
+  face({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 10, 30, window_b);  // x = 0, -x
+  face({30, 0, 0}, {0, 1, 0}, {0, 0, 1}, 30, 10, none);     // x = 30, +x
+  return m;
+}
+
 }  // namespace
 
 SCENARIO("a 10 mm cube with 0.2 mm layers") {
@@ -320,6 +353,28 @@ SCENARIO("an open mesh still yields every layer") {
         CHECK(layer_area(l) == doctest::Approx(100));
       }
       CHECK(s.report.count("open-loop") == 100);
+    }
+  }
+  GIVEN("a 30 × 30 × 10 box with two windows whose nearest ends belong to different windows") {
+    // The Stanford bunny's open base in miniature: window A in the y = 0 wall (x 2..13) and
+    // window B in the x = 0 wall (y 3..28), both z 2..8. Across a layer, the wall ends at the two
+    // windows' corners (0, 3) and (2, 0) are only 3.6 mm apart, nearer than either window's own
+    // pair of ends (11 and 25 mm): closing nearest-first cuts the box's corner off with a
+    // diagonal across the part.
+    Mesh m = welded(box_with_windows());
+    auto topo = build_topology(m);
+    CHECK(topo.boundary_edges == 2 * (11 + 6) + 2 * (25 + 6));
+    CHECK(topo.edge_rims.size() == topo.boundary_edges);
+    CHECK(topo.vertex_rim(topo.edges[topo.edge_rims.front().first].v0) == topo.edge_rims.front().second);
+    Sliced s;
+    slice_all(m, s);
+    THEN("each window's ends are joined to each other: every layer is the whole square") {
+      REQUIRE(s.layers.size() == 50);
+      for (const auto& l : s.layers) {
+        CHECK(l.islands.size() == 1);
+        CHECK(layer_area(l) == doctest::Approx(900));
+      }
+      CHECK(s.report.count("open-loop") == 2 * 30);
     }
   }
   GIVEN("a cube whose +x face is detached by a 0.1 mm crack") {
