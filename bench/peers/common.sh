@@ -1,0 +1,92 @@
+# Shared by bench_quality.sh and bench_peers.sh: matched settings for tranche and its peers,
+# benchmark models, and the command line of each slicer. Source it; then `bench_setup BUILD`.
+# shellcheck shell=bash
+
+PEERS_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+BENCH_DIR=$(dirname "$PEERS_DIR")
+ROOT=$(dirname "$BENCH_DIR")
+CACHE=${TRANCHE_CACHE:-${HOME:-/tmp}/.cache/tranche}
+
+# The benchmark settings, as tranche --set options (see prusaslicer.ini and cura.settings).
+TRANCHE_SETS=(
+  --set layer_height=0.2 --set first_layer_height=0.2 --set width=0.45 --set nozzle_diameter=0.4
+  --set filament_diameter=1.75 --set perimeters=2 --set infill_density=20% --set top_layers=3
+  --set bottom_layers=3 --set skirt_loops=0 --set infill_overlap=25% --set relative_e=false
+  --set nozzle_temp=200 --set bed_temp=0 --set retract_length=2 --set retract_speed=40
+  --set retract_before_travel=2 --set bed_size_x=200 --set bed_size_y=200
+)
+
+bench_setup() {
+  local build=${1:-build}
+  TRANCHE="$build/apps/tranche"
+  BENCH_MODELS="$build/bench/bench_models"
+  if [[ ! -x "$TRANCHE" || ! -x "$BENCH_MODELS" ]]; then
+    cmake --build "$build" --target tranche bench_models >/dev/null || return 1
+  fi
+  mkdir -p "$CACHE/bench"
+}
+
+# Writes the generated models into $CACHE/bench (once) and prints NAME PATH lines for $1 (a
+# space-separated list of names, or "all").
+bench_models() {
+  local want=${1:-all} d="$CACHE/bench"
+  "$ROOT/scripts/fetch-models.sh" >/dev/null 2>&1 || true
+  local stl_models=${TRANCHE_MODELS_DIR:-$CACHE/models}
+  # Made again when bench_models is newer than the file (its recipe may have changed).
+  fresh() { [[ -f $1 && ! $BENCH_MODELS -nt $1 ]]; }
+  fresh "$d/plate_holes.stl" || "$BENCH_MODELS" plate "$d/plate_holes.stl" >/dev/null
+  fresh "$d/torus819k.stl" || "$BENCH_MODELS" torus "$d/torus819k.stl" >/dev/null
+  if ! fresh "$d/stanford_bunny.stl" && [[ -f "$stl_models/objects/bunny.bin.stl" ]]; then
+    "$BENCH_MODELS" bunny "$stl_models/objects/bunny.bin.stl" "$d/stanford_bunny.stl" >/dev/null
+  fi
+  local shapes=/usr/share/PrusaSlicer/shapes
+  local name path
+  while read -r name path; do
+    if [[ $want == all || " $want " == *" $name "* ]]; then
+      if [[ -f $path ]]; then echo "$name $path"; else echo "bench: $name ($path) missing, skipped" >&2; fi
+    fi
+  done <<EOM
+bunny $shapes/bunny.stl
+torus $shapes/torus.stl
+M3_hex_nut $shapes/M3_hex_nut.stl
+M3x10_screw $shapes/M3x10_screw.stl
+sphere $shapes/sphere.stl
+cone $shapes/cone.stl
+stanford_bunny $d/stanford_bunny.stl
+plate_holes $d/plate_holes.stl
+torus819k $d/torus819k.stl
+EOM
+}
+
+# CuraEngine needs fdmprinter.def.json, which Debian ships in the `cura` package (not
+# cura-engine): downloaded once into the cache, never into the checkout.
+cura_defs() {
+  local d="$CACHE/cura"
+  if [[ ! -f "$d/definitions/fdmprinter.def.json" ]]; then
+    local tmp
+    tmp=$(mktemp -d) || return 1
+    (cd "$tmp" && apt-get download cura >/dev/null 2>&1 && dpkg -x cura_*.deb x) || { rm -rf "$tmp"; return 1; }
+    mkdir -p "$d"
+    rm -rf "$d/definitions"
+    mv "$tmp/x/usr/share/cura/resources/definitions" "$d/definitions"
+    rm -rf "$tmp"
+  fi
+  if [[ ! -f "$d/args" || "$PEERS_DIR/cura.settings" -nt "$d/args" ]]; then
+    /usr/bin/python3 "$BENCH_DIR/cura_settings.py" "$d/definitions" "$PEERS_DIR/cura.settings" >"$d/args" || return 1
+  fi
+  CURA_DEFS="$d/definitions"
+  mapfile -d '' -t CURA_ARGS <"$d/args"
+}
+
+# After `peer_cmd SLICER MODEL OUT`, CMD holds the command line (SLICER: tranche, prusa, cura).
+peer_cmd() {
+  local slicer=$1 model=$2 out=$3
+  case $slicer in
+    tranche) CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}") ;;
+    prusa) CMD=(prusa-slicer --export-gcode --load "$PEERS_DIR/prusaslicer.ini" --center 100,100 -o "$out" "$model") ;;
+    cura)
+      [[ -n ${CURA_DEFS:-} ]] || cura_defs || { echo "bench: cannot get Cura's definitions (apt-get download cura)" >&2; return 1; }
+      CMD=(CuraEngine slice -j "$CURA_DEFS/fdmprinter.def.json" "${CURA_ARGS[@]}" -l "$model" -o "$out") ;;
+    *) echo "bench: unknown slicer $slicer" >&2; return 1 ;;
+  esac
+}

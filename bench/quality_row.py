@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Rows and table for bench_quality.sh.
+
+quality_row.py NAME SLICER GCHECK.json FILE.gcode   prints one tab-separated row
+quality_row.py --table ROWS.tsv                      prints the table and tranche's ratios
+quality_row.py --offset MODEL.stl X,Y                prints gcheck's --offset for a model whose
+                                                     bounding box every slicer centres on X,Y
+"""
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gcode_counts import counts  # noqa: E402
+
+COLS = ['model', 'slicer', 'verdict', 'layers', 'band', 'band_p05', 'skin', 'overflow', 'overlap',
+        'volume_mm3', 'travels', 'retracts']
+
+
+def row(name, slicer, js, gcode):
+    s = json.load(open(js))['summary']
+    layers, travels, retracts, fed, vol, _, _ = counts(gcode)
+    L = json.load(open(js))['layers']
+    skin_a = sum(l['skin_area'] for l in L if l.get('skin_coverage') is not None)
+    skin_c = sum(l['skin_area'] * l['skin_coverage'] for l in L if l.get('skin_coverage') is not None)
+    skin = skin_c / skin_a if skin_a > 0 else 1.0
+    verdict = s.get('verdict', '?')
+    vals = [name, slicer, verdict.split(':')[0], str(layers), f"{s.get('band_coverage_mean', 0):.3f}",
+            f"{s.get('band_coverage_p05', 0):.3f}", f'{skin:.3f}', f"{s.get('overflow_max', 0):.4f}",
+            f"{s.get('overlap_ratio_median', 0):.3f}", f'{vol:.0f}', str(travels), str(retracts)]
+    print('\t'.join(vals))
+
+
+def table(path):
+    rows = [l.rstrip('\n').split('\t') for l in open(path) if l.strip()]
+    widths = [14, 8, 8, 6, 6, 8, 6, 8, 7, 10, 8, 8]
+    print(' '.join(c.ljust(w) for c, w in zip(COLS + ['vol/prusa'], widths + [9])))
+    by = {}
+    for r in rows:
+        by.setdefault(r[0], {})[r[1]] = r
+    for model, sl in by.items():
+        for s, r in sl.items():
+            if len(r) < len(COLS):
+                print(f'{model:<14} {s:<8} {" ".join(r[2:])}')
+                continue
+            ref = sl.get('prusa')
+            rel = f'{float(r[9]) / float(ref[9]):.3f}' if ref and len(ref) >= len(COLS) and float(ref[9]) > 0 else '-'
+            print(' '.join(c.ljust(w) for c, w in zip(r + [rel], widths + [9])))
+    print()
+    print('tranche / peer (travel moves, retractions), per model and over all models both sliced:')
+    for peer in ('prusa', 'cura'):
+        tt = tp = rt = rp = 0
+        parts = []
+        for model, sl in by.items():
+            a, b = sl.get('tranche'), sl.get(peer)
+            if not a or not b or len(a) < len(COLS) or len(b) < len(COLS):
+                continue
+            ta, tb, ra, rb = int(a[10]), int(b[10]), int(a[11]), int(b[11])
+            tt, tp, rt, rp = tt + ta, tp + tb, rt + ra, rp + rb
+            parts.append(f'{model} {ta / max(tb, 1):.2f}/{ra / max(rb, 1):.2f}')
+        if tp:
+            print(f'  vs {peer}: travels {tt / tp:.2f}, retractions {rt / max(rp, 1):.2f}   ({", ".join(parts)})')
+
+
+def offset(stl, centre):
+    """Model frame minus G-code frame: the slicers centre the model's bounding box on the bed."""
+    import numpy as np
+    data = open(stl, 'rb').read()
+    n = int.from_bytes(data[80:84], 'little')
+    if len(data) == 84 + 50 * n:
+        rec = np.frombuffer(data[84:], dtype=np.dtype([('n', '<f4', 3), ('v', '<f4', (3, 3)), ('a', '<u2')]))
+        v = rec['v'].reshape(-1, 3).astype(float)
+    else:
+        v = np.array([[float(x) for x in l.split()[1:4]] for l in data.decode(errors='replace').splitlines()
+                      if l.strip().startswith('vertex')])
+    cx, cy = (float(c) for c in centre.split(','))
+    lo, hi = v.min(0), v.max(0)
+    print(f'{(lo[0] + hi[0]) / 2 - cx:.4f},{(lo[1] + hi[1]) / 2 - cy:.4f}')
+
+
+if __name__ == '__main__':
+    if sys.argv[1] == '--table':
+        table(sys.argv[2])
+    elif sys.argv[1] == '--offset':
+        offset(sys.argv[2], sys.argv[3])
+    else:
+        row(*sys.argv[1:5])
