@@ -465,3 +465,39 @@ rule { after path { comment "p {layer.index} {island.area:.1}" } }
   CHECK(serial == parallel);
   CHECK(std::find(serial.begin(), serial.end(), -1.0) == serial.end());
 }
+
+TEST_CASE("vm: a value that is not a number, a negative square root and a runaway template are errors") {
+  ctx::Context c;
+  c.clear_from(Level::Layer);
+  c.set(FieldId::LayerZ, 1e300);
+  auto props = ctx::PropertyValues::schema_defaults();
+  c.set_props(&props);
+  auto inf = test::rules("rule \"huge\" { fan = layer.z * layer.z / 1 mm2 }");
+  auto s = inf->decide(Stage::Cooling, c, props);
+  REQUIRE_FALSE(s.ok());
+  CHECK(s.error().message.find("not a number") != std::string::npos);
+  auto nan = test::rules("rule \"nan\" { fan = (layer.z * layer.z - layer.z * layer.z) / 1 mm2 }");
+  s = nan->decide(Stage::Cooling, c, props);
+  REQUIRE_FALSE(s.ok());
+  CHECK(s.error().message.find("not a number") != std::string::npos);
+  auto root = test::rules("rule \"root\" { fan = sqrt(-layer.z * 1 mm) / 1 mm }");
+  s = root->decide(Stage::Cooling, c, props);
+  REQUIRE_FALSE(s.ok());
+  CHECK(s.error().where == "test.rules:1:21");
+  CHECK(s.error().message.find("square root of a negative number") != std::string::npos);
+  auto text = test::rules(R"(rule "long" { after layer { for i in 1..9000 { gcode "{i} {i} {i}" } } })");
+  test::Lines out;
+  c.set(FieldId::LayerZ, 1);
+  CHECK(text->run(Level::Layer, ctx::When::After, c, out).ok());  // many lines: fine
+  CHECK(out.lines.size() == 9000);
+  // One template that grows without bound: refused.
+  std::string big = "rule \"big\" { after layer { gcode \"";
+  for (int i = 0; i < 6000; ++i) big += "{layer.z:.12}";  // 14 characters each
+  big += "\" } }";
+  auto huge = test::rules(big);
+  out.lines.clear();
+  auto r = huge->run(Level::Layer, ctx::When::After, c, out);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().message.find("more than 65536 characters") != std::string::npos);
+  CHECK(r.error().message.find("\"big\"") != std::string::npos);
+}

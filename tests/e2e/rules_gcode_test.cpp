@@ -12,6 +12,7 @@
 #include "compiler/codegen.h"
 #include "compiler/frontend.h"
 #include "gcode_reader.h"
+#include "geometry/fillangle/fill_angle.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/slice_job.h"
@@ -303,4 +304,59 @@ SCENARIO("rules: bad rules and run-time errors stop the slice with the rule's lo
   auto missing = run(dir, "missing", box, {(dir / "nope.rules").string()});
   REQUIRE_FALSE(missing.result.ok());
   CHECK(missing.result.error().message.find("cannot read") != std::string::npos);
+}
+
+SCENARIO("rules: fill_angle rules win over the Python script, which wins over the default") {
+  if (!geo::FillAngleScript::available()) return;  // built without Python
+  test::TempDir dir("rules-script");
+  auto box = geo::box({30, 30, 3});
+  Run r;
+  r.options.quiet = true;
+  r.options.model = (dir / "box.stl").string();
+  REQUIRE(geo::write_stl_binary(r.options.model, box).ok());
+  r.options.output_gcode = (dir / "box.gcode").string();
+  r.options.fill_angle_script = write_file(dir, "zero.py", "def fill_angle(ctx):\n    return 0\n");
+  r.options.rules = {write_file(dir, "r.rules", "rule when layer.index >= 8 { fill_angle = 90 deg }\n")};
+  r.options.sets = {{"skirt_loops", "0"}, {"top_layers", "0"}, {"bottom_layers", "0"}};
+  Report report;
+  auto res = pipeline::run_slice(r.options, report);
+  REQUIRE_MESSAGE(res.ok(), (res.ok() ? "" : res.error().to_string()));
+  auto g = test::read_gcode(r.options.output_gcode);
+  std::map<int, std::pair<double, double>> longest;
+  for (const auto& m : g.moves) {
+    if (!extrudes(m) || m.type != "Internal infill") continue;
+    double len = std::hypot(m.x - m.x0, m.y - m.y0);
+    auto& l = longest[m.layer];
+    if (len > l.first) l = {len, line_angle(m)};
+  }
+  REQUIRE(longest.size() >= 12);
+  for (const auto& [layer, l] : longest) {
+    double want = layer >= 8 ? 90 : 0;
+    double diff = std::min(std::abs(l.second - want), 180 - std::abs(l.second - want));
+    CHECK_MESSAGE(diff < 0.5, "layer " << layer << ": " << l.second);
+  }
+}
+
+SCENARIO("rules: a replacer alters the island for what follows (offset before the default)") {
+  test::TempDir dir("rules-offset");
+  auto box = geo::box({20, 20, 1});
+  auto plain = slice(dir, "plain", box, "");
+  auto shrunk = slice(dir, "shrunk", box, R"(
+rule "shrink big islands" when island.area > 100 mm2 {
+  replace island {
+    offset -1 mm
+    default
+    comment "shrunk island {island.index}: {island.area:.0} mm2"
+  }
+}
+)");
+  auto extent = [](const test::Gcode& g) {
+    double lo = 1e9, hi = -1e9;
+    for (const auto& m : g.moves)
+      if (extrudes(m) && m.type == "External perimeter") lo = std::min(lo, m.x), hi = std::max(hi, m.x);
+    return hi - lo;
+  };
+  CHECK(extent(plain) - extent(shrunk) == doctest::Approx(2.0).epsilon(0.01));
+  // The island's fields are those of the altered shape when it is decided again: 18 × 18 mm.
+  CHECK(shrunk.contains("; shrunk island 0: 324 mm2"));
 }
