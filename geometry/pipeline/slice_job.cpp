@@ -14,6 +14,7 @@
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/progress.h"
+#include "geometry/polygon/decompose.h"
 #include "geometry/polygon/layers.h"
 #include "geometry/slice/layer_plan.h"
 #include "geometry/slice/slicer.h"
@@ -141,9 +142,17 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
     if (auto st = geo::apply_fill_angle_script(*script, layers); !st) return st.error();
     progress.finish();
   }
-  progress.start("cells", layers.size());  // monotone cells at each island's fill angle
-  if (auto st = geo::decompose_layers(layers, nullptr, &report, tick); !st) return st.error();
-  progress.finish();
+  if (!options.export_svg.empty() || !options.export_layers.empty()) {
+    // Monotone cells at each island's fill angle, for the exports. The G-code stage cuts each
+    // island's fill region (inside its perimeters) at the angle the rules decide, on its own.
+    progress.start("cells", layers.size());
+    if (auto st = geo::decompose_layers(layers, nullptr, &report, tick); !st) return st.error();
+    progress.finish();
+  } else {
+    for (auto& l : layers)
+      for (auto& is : l.islands)
+        if (std::isnan(is.fill_angle_deg)) is.fill_angle_deg = geo::default_fill_angle(l.index);
+  }
 
   summary.layers = static_cast<int>(layers.size());
   if (!options.export_svg.empty()) {
