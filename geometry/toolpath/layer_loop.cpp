@@ -148,6 +148,12 @@ class LayerTask {
     return geo::Point(geo::to_units(x_mm) - S.shift.X, geo::to_units(y_mm) - S.shift.Y);
   }
   void island_fields(IslandPlan& ip);
+  // A replacer altered the path: the rest of it reads the new shape (a new path generation).
+  void path_altered(PathPlan& p) {
+    ctx_.clear_from(Level::Path);
+    set_path_fields(ctx_, p);
+    path_view_.bind(ctx_, p, S.shift);
+  }
 
  private:
   Status layer_level();
@@ -752,6 +758,7 @@ void IslandReplace::move_to(double x, double y, const ctx::MoveOptions& o) {
   op.to = t_.to_model(x, y);
   if (o.speed) op.speed = static_cast<float>(*o.speed);
   if (o.flow) op.flow = static_cast<float>(*o.flow);
+  if (o.width) op.width = static_cast<float>(*o.width);
   ip_.ops.push_back(std::move(op));
 }
 
@@ -771,8 +778,11 @@ Status IslandReplace::emit_default() {
 
 Status IslandReplace::offset(double mm) {
   ip_.shape = toolpath::offset(ip_.shape, mm);
-  t_.island_fields(ip_);
-  altered_ = true;
+  // The rest of the replacer, and everything after it, sees the altered island: its fields and
+  // properties are decided again now (a new generation of the island level).
+  if (Status s = t_.island_decide(ip_); !s) return s;
+  altered_ = false;
+  built_ = false;
   return ok_status();
 }
 
@@ -780,7 +790,7 @@ void PathReplace::move_to(double x, double y, const ctx::MoveOptions& o) {
   Op op;
   op.kind = o.travel ? Op::Kind::Travel : Op::Kind::Extrude;
   op.to = t_.to_model(x, y);
-  op.width = p_.width;
+  op.width = o.width ? static_cast<float>(*o.width) : p_.width;
   op.speed = o.speed ? static_cast<float>(*o.speed) : 0.0f;  // 0: the path's decided speed
   op.flow = o.flow ? static_cast<float>(*o.flow) : -1.0f;    // <0: the path's decided flow
   p_.ops.push_back(std::move(op));
@@ -790,6 +800,7 @@ Status PathReplace::reverse() {
   std::reverse(p_.pts.begin(), p_.pts.end());
   std::reverse(p_.border.begin(), p_.border.end());
   std::reverse(p_.overhang.begin(), p_.overhang.end());
+  t_.path_altered(p_);
   return ok_status();
 }
 
@@ -825,6 +836,7 @@ Status PathReplace::offset(double mm) {
   if (closed) out[n - 1] = out[0];
   pts = std::move(out);
   (void)ip_;
+  t_.path_altered(p_);
   return ok_status();
 }
 

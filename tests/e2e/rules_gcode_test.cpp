@@ -1,6 +1,7 @@
 // End to end with rules: every example of the language's design (LANGUAGE.md), sliced from a
 // generated mesh with `--rules`, checked on the G-code a printer would receive.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
@@ -345,8 +346,8 @@ SCENARIO("rules: a replacer alters the island for what follows (offset before th
 rule "shrink big islands" when island.area > 100 mm2 {
   replace island {
     offset -1 mm
-    default
     comment "shrunk island {island.index}: {island.area:.0} mm2"
+    default
   }
 }
 )");
@@ -357,6 +358,24 @@ rule "shrink big islands" when island.area > 100 mm2 {
     return hi - lo;
   };
   CHECK(extent(plain) - extent(shrunk) == doctest::Approx(2.0).epsilon(0.01));
-  // The island's fields are those of the altered shape when it is decided again: 18 × 18 mm.
+  // After `offset`, the replacer reads the altered island: 18 × 18 mm.
   CHECK(shrunk.contains("; shrunk island 0: 324 mm2"));
+  // A path replacer: `reverse`, then the reversed path's own fields; moves with their own width.
+  auto moved = slice(dir, "moved", box, R"(
+rule "walls backwards" when path.kind == outer_perimeter {
+  replace path {
+    reverse
+    for p in path.points { if p.index == 1 { comment "second point {p.x:.3} {p.y:.3}" } }
+    move to (100 mm, 100 mm) with width = 0.6 mm, flow = 50%
+  }
+}
+)");
+  CHECK(moved.contains(";WIDTH:0.6"));
+  // The plain outer perimeter's second-to-last point is the reversed path's second point.
+  std::vector<const test::Move*> outer;
+  for (const auto& m : plain.moves)
+    if (m.layer == 0 && extrudes(m) && m.type == "External perimeter") outer.push_back(&m);
+  REQUIRE(outer.size() >= 3);
+  const auto* before_last = outer[outer.size() - 2];
+  CHECK(moved.contains(fmt::format("; second point {:.3f} {:.3f}", before_last->x, before_last->y)));
 }
