@@ -305,6 +305,12 @@ class Formatter final : public ctx::LineSink {
     }
     double len = std::hypot(double(to.X - pos_.X), double(to.Y - pos_.Y)) * geo::kMmPerUnit;
     e_exact_ += len * e_per_mm;
+    // A move that rounds to where the nozzle already is (to the micrometre written) is not
+    // written: its plastic, if any, goes with the next move, whose E is computed from the total.
+    if (round_div(to.X, 1000) == round_div(pos_.X, 1000) && round_div(to.Y, 1000) == round_div(pos_.Y, 1000)) {
+      pos_ = to;
+      return;
+    }
     int64_t delta = std::llround(e_exact_ * 1e5) - e_sent_;
     e_sent_ += delta;
     t += "G1";

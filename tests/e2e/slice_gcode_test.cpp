@@ -140,6 +140,21 @@ SCENARIO("a box sliced with the defaults") {
   }
 }
 
+SCENARIO("no extrusion move goes nowhere") {
+  test::TempDir dir("e2e-zero");
+  // The demo model had 188 moves to the point the nozzle was already at (as written, to the
+  // micrometre): points closer than that in a path, or a path starting where the travel ended.
+  auto s = slice(dir, "demo", geo::demo_model());
+  int zero = 0, extrusions = 0;
+  for (const auto& m : s.gcode.moves) {
+    if (!m.has_xy || !m.has_e) continue;
+    ++extrusions;
+    if (m.x == m.x0 && m.y == m.y0) ++zero;
+  }
+  CHECK(extrusions > 10000);
+  CHECK(zero == 0);
+}
+
 SCENARIO("perimeters follow real borders only") {
   test::TempDir dir("e2e-cuts");
   GIVEN("a plate with a grid of holes, whose fill is cut into many cells") {
