@@ -1,0 +1,275 @@
+// stdlib/features: each feature file, applied with --rules over the default profile, sliced from
+// a small generated mesh and checked on the G-code a printer would receive.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "tests/stdlib/stdlib_helpers.h"
+
+using namespace tranche;
+using namespace tranche::test;
+
+TEST_CASE("features/first-layer: layer 0 slow, wider and hotter; the rest as the profile says") {
+  TempDir dir("feat-first");
+  auto box = geo::box({20, 20, 2});
+  auto plain = slice_with(dir, "plain", box, {});
+  auto g = slice_with(dir, "first", box, Profile().feature("first-layer"));
+  // PLA: 215 °C and 60 °C on the first layer, +5 each.
+  CHECK(g.contains("M109 S220"));
+  CHECK(g.contains("M190 S65"));
+  CHECK(plain.contains("M109 S215"));
+  std::set<double> feeds0, feeds2;
+  for (const auto& m : g.moves)
+    if (extrudes(m)) (m.layer == 0 ? feeds0 : feeds2).insert(m.f);
+  CHECK(feeds0 == std::set<double>{900});  // 15 mm/s
+  CHECK(feeds2.size() > 1);
+  // 0.54 mm beads instead of 0.45 mm: 20% more plastic per mm on layer 0, as before above it.
+  double wide = e_per_mm(g, "External perimeter", 0) / e_per_mm(plain, "External perimeter", 0);
+  CHECK(wide == doctest::Approx(0.54 / 0.45).epsilon(0.03));
+  CHECK(e_per_mm(g, "External perimeter", 3) == doctest::Approx(e_per_mm(plain, "External perimeter", 3)));
+}
+
+TEST_CASE("features/bridges: bridge paths thin and slow, full fan over a gap even for ABS") {
+  TempDir dir("feat-bridges");
+  // Two 4 mm pillars 12 mm apart carrying a 1 mm slab: the slab's first layer is 40% supported.
+  geo::Mesh m = geo::box({4, 20, 3});
+  geo::append(m, geo::box({4, 20, 3}, {16, 0, 0}));
+  geo::append(m, geo::box({20, 20, 1}, {0, 0, 3}));
+  auto abs = Profile().material("abs");
+  auto plain = slice_with(dir, "plain", m, abs);
+  auto g = slice_with(dir, "bridges", m, abs.feature("bridges"));
+  int bridge_moves = 0;
+  for (const auto& mv : g.moves) {
+    if (!extrudes(mv) || mv.type != "Bridge infill") continue;
+    ++bridge_moves;
+    CHECK(mv.f == 1200);  // 20 mm/s
+    CHECK(mv.fan == doctest::Approx(1.0));
+  }
+  CHECK(bridge_moves > 5);
+  CHECK(e_per_mm(g, "Bridge infill") == doctest::Approx(0.8 * e_per_mm(plain, "Bridge infill")).epsilon(0.02));
+  // Elsewhere ABS keeps its 15% fan.
+  for (const auto& mv : g.moves)
+    if (extrudes(mv) && mv.layer >= 3 && mv.layer < 14) CHECK(mv.fan == doctest::Approx(0.15).epsilon(0.02));
+}
+
+TEST_CASE("features/small-island-cooling: a 2 x 2 mm pin is slower and fully cooled, the big part is not") {
+  TempDir dir("feat-small");
+  geo::Mesh m = geo::box({20, 20, 3});
+  geo::append(m, geo::box({2, 2, 3}, {30, 0, 0}));
+  auto g = slice_with(dir, "small", m, Profile().material("abs").feature("small-island-cooling").set("min_layer_time", "0"));
+  // The scene (0..32 mm) is centred on the 200 mm bed: the pin is right of x = 110.
+  int pin = 0, big = 0;
+  for (const auto& mv : g.moves) {
+    if (!extrudes(mv) || mv.layer < 3) continue;
+    if (mv.x > 110) {
+      ++pin;
+      CHECK(mv.f <= 0.2 * 80 * 60 + 1);  // 4 mm² of 20 mm²: a fifth of the speed, at least 10 mm/s
+      CHECK(mv.f >= 600);
+      CHECK(mv.fan == doctest::Approx(1.0));
+    } else {
+      ++big;
+      CHECK(mv.f >= 25 * 60);
+      CHECK(mv.fan == doctest::Approx(0.15).epsilon(0.02));
+    }
+  }
+  CHECK(pin > 20);
+  CHECK(big > 100);
+}
+
+namespace {
+
+// For each extruding path, the pressure-advance factor in force must be the one for its type.
+void check_pressure_advance(const Gcode& g, const std::string& command) {
+  const std::map<std::string, double> want = {{"External perimeter", 0.045}, {"Perimeter", 0.040},
+                                              {"Solid infill", 0.035},       {"Top solid infill", 0.035},
+                                              {"Bridge infill", 0},          {"Internal infill", 0.030}};
+  double k = -1;
+  size_t line = 0;
+  std::set<std::string> types;
+  for (const auto& m : g.moves) {
+    for (; line < m.line; ++line)  // the last PA command before this move
+      if (g.lines[line].rfind(command, 0) == 0) k = std::stod(g.lines[line].substr(command.size()));
+    if (!extrudes(m) || m.layer < 0) continue;
+    auto it = want.find(m.type);
+    if (it == want.end()) continue;
+    INFO("line " << m.line << " " << m.type);
+    CHECK(k == doctest::Approx(it->second));
+    types.insert(m.type);
+  }
+  CHECK(types.size() >= 4);
+}
+
+}  // namespace
+
+TEST_CASE("features/pressure-advance: the factor of each path kind, in the firmware's dialect") {
+  TempDir dir("feat-pa");
+  auto plate = geo::plate_with_holes(20, 20, 2, 2, 2, 2, 24);
+  auto marlin = slice_with(dir, "marlin", plate, Profile().feature("pressure-advance"));
+  check_pressure_advance(marlin, "M900 K");
+  CHECK_FALSE(marlin.contains("SET_PRESSURE_ADVANCE"));
+  auto klipper = slice_with(dir, "klipper", plate, Profile().printer("klipper").feature("pressure-advance"));
+  check_pressure_advance(klipper, "SET_PRESSURE_ADVANCE ADVANCE=");
+  CHECK_FALSE(klipper.contains("M900"));
+  auto rrf = slice_with(dir, "rrf", plate, Profile().printer("reprapfirmware").feature("pressure-advance"));
+  check_pressure_advance(rrf, "M572 D0 S");
+  CHECK_FALSE(rrf.contains("M900"));
+  // Prusa's start turns linear advance off; the feature then sets it before every path.
+  auto prusa = slice_with(dir, "prusa", plate, Profile().printer("prusa-mk3s").feature("pressure-advance"));
+  check_pressure_advance(prusa, "M900 K");
+}
+
+TEST_CASE("features/infill-angle-list: 45, 135, 0, 90 degrees, repeating every four layers") {
+  TempDir dir("feat-list");
+  auto g = slice_with(dir, "list", geo::box({30, 30, 4}),
+                      Profile().feature("infill-angle-list").set("top_layers", "0").set("bottom_layers", "0"));
+  auto angles = infill_angles(g);
+  REQUIRE(angles.size() >= 15);
+  const double list[] = {45, 135, 0, 90};
+  for (const auto& [layer, a] : angles) {
+    INFO("layer " << layer << ": " << a);
+    CHECK(angle_diff(a, list[layer % 4]) < 0.5);
+  }
+}
+
+TEST_CASE("features/infill-angle-increment: 15 degrees more every layer") {
+  TempDir dir("feat-inc");
+  auto g = slice_with(dir, "inc", geo::box({30, 30, 4}),
+                      Profile().feature("infill-angle-increment").set("top_layers", "0").set("bottom_layers", "0"));
+  auto angles = infill_angles(g);
+  REQUIRE(angles.size() >= 15);
+  for (const auto& [layer, a] : angles) {
+    INFO("layer " << layer << ": " << a);
+    CHECK(angle_diff(a, 45 + 15.0 * layer) < 0.5);
+  }
+}
+
+TEST_CASE("features/infill-rotation-by-height: 10 degrees per mm of z, whatever the layer height") {
+  TempDir dir("feat-height");
+  for (const char* h : {"0.2", "0.1"}) {
+    auto g = slice_with(dir, std::string("rot") + h, geo::box({30, 30, 3}),
+                        Profile().feature("infill-rotation-by-height").set("top_layers", "0").set("bottom_layers", "0").set("layer_height", h));
+    auto angles = infill_angles(g);
+    REQUIRE(angles.size() >= 14);
+    for (const auto& [layer, a] : angles) {
+      double z_bottom = layer == 0 ? 0 : g.layer_z.at(layer - 1);
+      INFO("layer height " << h << ", layer " << layer << " (z_bottom " << z_bottom << "): " << a);
+      CHECK(angle_diff(a, 45 + 10 * z_bottom) < 0.5);
+    }
+  }
+}
+
+TEST_CASE("features/colour-change: M600 once, at the start of layer 10; PAUSE on Klipper") {
+  TempDir dir("feat-colour");
+  auto box = geo::box({10, 10, 4});
+  auto g = slice_with(dir, "marlin", box, Profile().feature("colour-change"));
+  auto at = lines_starting(g, "M600");
+  REQUIRE(at.size() == 1);
+  CHECK(layer_of_line(g, at[0]) == 10);
+  // Before any extrusion of layer 10.
+  for (const auto& m : g.moves)
+    if (m.layer == 10 && extrudes(m)) CHECK(m.line > at[0]);
+  auto k = slice_with(dir, "klipper", box, Profile().printer("klipper").feature("colour-change"));
+  CHECK(count_lines(k, "M600") == 0);
+  auto pause = lines_starting(k, "PAUSE");
+  REQUIRE(pause.size() == 1);
+  CHECK(layer_of_line(k, pause[0]) == 10);
+}
+
+TEST_CASE("features/pause-at-height: one pause, before the first layer above 5 mm, in each dialect") {
+  TempDir dir("feat-pause");
+  auto box = geo::box({10, 10, 8});
+  struct Case {
+    const char* printer;
+    const char* command;
+  };
+  for (Case c : {Case{"generic-marlin", "M0 "}, Case{"klipper", "PAUSE"}, Case{"reprapfirmware", "M226"}}) {
+    INFO(c.printer);
+    for (const char* h : {"0.2", "0.15"}) {
+      auto g = slice_with(dir, std::string(c.printer) + h, box,
+                          Profile().printer(c.printer).feature("pause-at-height").set("layer_height", h));
+      auto at = lines_starting(g, c.command);
+      REQUIRE(at.size() == 1);
+      int layer = layer_of_line(g, at[0]);
+      CHECK(g.layer_z.at(layer) > 5);
+      CHECK(g.layer_z.at(layer - 1) <= 5 + 1e-6);
+    }
+  }
+}
+
+TEST_CASE("features/height-range: 0.1 mm layers and four perimeters between 2 and 4 mm only") {
+  TempDir dir("feat-range");
+  auto g = slice_with(dir, "range", geo::box({20, 20, 6}), Profile().feature("height-range"));
+  REQUIRE(g.layer_z.size() > 30);
+  std::map<int, double> inner;  // layer -> length of inner perimeters
+  for (const auto& m : g.moves)
+    if (extrudes(m) && m.type == "Perimeter") inner[m.layer] += length(m);
+  int fine = 0;
+  for (const auto& [layer, z] : g.layer_z) {
+    if (layer == 0) continue;
+    double z_bottom = g.layer_z.at(layer - 1), h = z - z_bottom;
+    bool in_range = z_bottom >= 2 - 1e-6 && z_bottom < 4 - 1e-6;
+    INFO("layer " << layer << " from z " << z_bottom);
+    CHECK(h == doctest::Approx(in_range ? 0.1 : 0.2).epsilon(0.01));
+    fine += in_range;
+    // Two walls give one inner loop, four give three.
+    if (in_range) CHECK(inner[layer] > 2.5 * inner[1]);
+    else CHECK(inner[layer] < 1.5 * inner[1]);
+  }
+  CHECK(fine == 20);
+}
+
+TEST_CASE("features/ironing: every top surface path printed, then gone over again at 10% flow") {
+  TempDir dir("feat-iron");
+  auto box = geo::box({20, 20, 2});
+  auto plain = slice_with(dir, "plain", box, {});
+  auto g = slice_with(dir, "iron", box, Profile().feature("ironing"));
+  auto marks = lines_starting(g, "; ironing");
+  REQUIRE(marks.size() >= 1);
+  // Every move after a mark, up to the next type change or layer, is a low-flow pass at 15 mm/s.
+  double e_iron = 0, len_iron = 0;
+  for (const auto& m : g.moves) {
+    auto after = std::upper_bound(marks.begin(), marks.end(), m.line);
+    if (after == marks.begin() || !extrudes(m)) continue;
+    size_t mark = *(after - 1);
+    bool same_block = true;
+    for (size_t l = mark; l < m.line && same_block; ++l)
+      same_block = g.lines[l].rfind(";TYPE:", 0) != 0 && g.lines[l].rfind(";LAYER:", 0) != 0;
+    if (!same_block) continue;
+    CHECK(m.f == 900);
+    e_iron += m.de;
+    len_iron += length(m);
+  }
+  REQUIRE(len_iron > 100);
+  double top = e_per_mm(plain, "Top solid infill");
+  CHECK(e_iron / len_iron == doctest::Approx(0.1 * top).epsilon(0.05));
+  // The default paths are all still there: the top layers hold about 110% of their plastic.
+  double plain_top = 0, iron_top = 0;
+  for (const auto& m : plain.moves)
+    if (extrudes(m) && m.type == "Top solid infill") plain_top += m.de;
+  for (const auto& m : g.moves)
+    if (extrudes(m) && m.type == "Top solid infill") iron_top += m.de;
+  CHECK(iron_top == doctest::Approx(1.1 * plain_top).epsilon(0.03));
+}
+
+TEST_CASE("features/fan-by-layer-time: full fan on short layers, less on long ones, never under 30%") {
+  TempDir dir("feat-fan");
+  // A wide base (long layers) under a thin tower (short layers).
+  geo::Mesh m = geo::box({60, 60, 2});
+  geo::append(m, geo::box({6, 6, 3}, {27, 27, 2}));
+  auto g = slice_with(dir, "fan", m, Profile().feature("fan-by-layer-time").set("skirt_loops", "0").set("min_layer_time", "0"));
+  std::map<int, std::set<double>> fans;
+  for (const auto& mv : g.moves)
+    if (extrudes(mv)) fans[mv.layer].insert(std::round(mv.fan * 100) / 100);
+  REQUIRE(fans.size() > 20);
+  CHECK(fans[0] == std::set<double>{0});
+  for (const auto& [layer, f] : fans) {
+    if (layer == 0) continue;
+    INFO("layer " << layer);
+    REQUIRE(f.size() == 1);
+    double fan = *f.begin();
+    CHECK(fan >= 0.3 - 1e-9);
+    if (layer >= 12) CHECK(fan == doctest::Approx(1.0));  // the tower: a few seconds a layer
+    if (layer >= 1 && layer < 9) CHECK(fan < 0.9);        // the base: 60 x 60 mm a layer
+  }
+}
