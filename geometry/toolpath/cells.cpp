@@ -20,34 +20,26 @@ std::vector<geo::EdgeKind> label(const geo::Ring& ring, const EdgeGrid& border) 
 }
 }  // namespace
 
+namespace {
+// The region as polygons with holes from one Clipper union. Strictly simple output (rings that
+// touch split at the touching vertex) costs a quadratic pass over each ring's vertices, most of
+// the slicing time on fine meshes: it is asked for only when decompose() refused the plain one.
+std::vector<geo::Polygon> polygons(const geo::Rings& region, bool strictly_simple) {
+  ClipperLib::Clipper clip;
+  clip.StrictlySimple(strictly_simple);
+  clip.AddPaths(region, ClipperLib::ptSubject, true);
+  ClipperLib::PolyTree tree;
+  clip.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return geo::to_polygons(tree);
+}
+}  // namespace
+
 std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, const EdgeGrid& fill_border,
                                   Report& report, const std::string& where) {
   std::vector<CellShape> out;
   if (region.empty()) return out;
-  // Strictly simple polygons with holes (rings meeting at most at shared vertices), the input
-  // decompose() expects, from one Clipper union.
-  ClipperLib::Clipper clip;
-  clip.StrictlySimple(true);
-  clip.AddPaths(region, ClipperLib::ptSubject, true);
-  ClipperLib::PolyTree tree;
-  clip.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  for (const geo::Polygon& poly : geo::to_polygons(tree)) {
-    auto cells = geo::decompose(poly, angle_deg);
-    if (!cells) {
-      // The polygon itself, filled by as many zig-zag runs as it needs (with travel between).
-      report.warn("decompose", where,
-                  "a fill region could not be cut into cells (" + cells.error().message +
-                      "); it is filled with travel moves between lines");
-      CellShape c;
-      c.shape.rings.push_back(poly.outer);
-      for (const auto& h : poly.holes) c.shape.rings.push_back(h);
-      for (const auto& r : c.shape.rings) c.shape.kinds.push_back(label(r, fill_border));
-      c.area_mm2 = geo::area_mm2(poly);
-      c.monotone = false;
-      out.push_back(std::move(c));
-      continue;
-    }
-    for (geo::Cell& cell : *cells) {
+  auto add = [&](std::vector<geo::Cell>& cells) {
+    for (geo::Cell& cell : cells) {
       CellShape c;
       c.area_mm2 = std::abs(geo::area_mm2(cell.ring));
       c.monotone = geo::is_monotone(cell.ring, angle_deg);
@@ -62,6 +54,36 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
       c.shape.rings.push_back(std::move(cell.ring));
       c.shape.kinds.push_back(std::move(kinds));
       out.push_back(std::move(c));
+    }
+  };
+  auto fallback = [&](const geo::Polygon& poly, const std::string& why) {
+    // The polygon itself, filled by as many zig-zag runs as it needs (with travel between).
+    report.warn("decompose", where,
+                "a fill region could not be cut into cells (" + why +
+                    "); it is filled with travel moves between lines");
+    CellShape c;
+    c.shape.rings.push_back(poly.outer);
+    for (const auto& h : poly.holes) c.shape.rings.push_back(h);
+    for (const auto& r : c.shape.rings) c.shape.kinds.push_back(label(r, fill_border));
+    c.area_mm2 = geo::area_mm2(poly);
+    c.monotone = false;
+    out.push_back(std::move(c));
+  };
+  for (const geo::Polygon& poly : polygons(region, false)) {
+    auto cells = geo::decompose(poly, angle_deg);
+    if (cells) {
+      add(*cells);
+      continue;
+    }
+    // Rings touching at a vertex or along an edge: the same polygon, strictly simple.
+    geo::Rings rings{poly.outer};
+    rings.insert(rings.end(), poly.holes.begin(), poly.holes.end());
+    for (const geo::Polygon& part : polygons(rings, true)) {
+      auto again = geo::decompose(part, angle_deg);
+      if (again)
+        add(*again);
+      else
+        fallback(part, again.error().message);
     }
   }
   return out;
