@@ -9,8 +9,19 @@ namespace tranche::toolpath {
 
 using geo::Point;
 
-Comber::Comber(const geo::Rings& material, double margin_mm)
-    : comb_(offset(material, -margin_mm)), comb_grid_(comb_), border_(material) {}
+Comber::Comber(const geo::Rings& material, double margin_mm) : material_(material), margin_mm_(margin_mm) {}
+
+const EdgeGrid& Comber::border() const {
+  std::call_once(border_once_, [&] { border_ = EdgeGrid(material_); });
+  return border_;
+}
+
+void Comber::build_comb() const {
+  std::call_once(comb_once_, [&] {
+    comb_ = offset(material_, -margin_mm_);
+    comb_grid_ = EdgeGrid(comb_);
+  });
+}
 
 namespace {
 double len_mm(const Point& a, const Point& b) { return std::sqrt(dist2(a, b)) * geo::kMmPerUnit; }
@@ -28,6 +39,7 @@ double Comber::length_mm(const Point& a, const geo::Ring& via, const Point& b) {
 }
 
 std::optional<geo::Ring> Comber::route(const Point& a, const Point& b, double slack_mm) const {
+  build_comb();
   if (comb_.empty() || !comb_grid_.inside(a) || !comb_grid_.inside(b)) return std::nullopt;
   auto hits = comb_grid_.hits(a, b);
   if (hits.size() % 2 != 0) return std::nullopt;  // grazing a vertex: not worth the risk

@@ -1,9 +1,11 @@
 // Combing: travel moves routed inside the part instead of straight across a hole or a notch, so
 // that they need no retraction. A travel that leaves an island's interior is replaced by one
 // that follows the island's border (kept a little inside it) around the obstacle, then pulled
-// tight so that it has as few moves as it can.
+// tight so that it has as few moves as it can. The edge grids and the shrunk material are
+// built on first use: most layers need few travels checked and fewer routed.
 #pragma once
 
+#include <mutex>
 #include <optional>
 
 #include "geometry/core/geom.h"
@@ -18,8 +20,8 @@ class Comber {
   explicit Comber(const geo::Rings& material, double margin_mm = 0.1);
 
   // Whether the straight move ab stays inside the material (crosses no border).
-  bool direct(const geo::Point& a, const geo::Point& b) const { return !border_.crosses(a, b); }
-  bool inside(const geo::Point& p) const { return border_.inside(p); }
+  bool direct(const geo::Point& a, const geo::Point& b) const { return !border().crosses(a, b); }
+  bool inside(const geo::Point& p) const { return border().inside(p); }
   // The intermediate points of a travel from a to b that stays inside one island, or nothing
   // when a or b is not well inside, they lie in different islands, or the detour would be
   // longer than max(2 × the straight distance, straight + `slack_mm`).
@@ -29,9 +31,15 @@ class Comber {
   static double length_mm(const geo::Point& a, const geo::Ring& via, const geo::Point& b);
 
  private:
-  geo::Rings comb_;     // the material shrunk by the margin: routes follow these rings
-  EdgeGrid comb_grid_;  // edges of comb_
-  EdgeGrid border_;     // edges of the material itself
+  const EdgeGrid& border() const;
+  void build_comb() const;
+
+  geo::Rings material_;
+  double margin_mm_ = 0.1;
+  mutable std::once_flag border_once_, comb_once_;
+  mutable EdgeGrid border_;     // edges of the material itself
+  mutable geo::Rings comb_;     // the material shrunk by the margin: routes follow these rings
+  mutable EdgeGrid comb_grid_;  // edges of comb_
 };
 
 }  // namespace tranche::toolpath
