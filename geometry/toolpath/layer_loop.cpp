@@ -464,10 +464,30 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
     }
     i = j;
   }
-  // Zig-zags: nearest end first; either end may start. Paths of one cell stay together.
+  // Zig-zags: the order with the fewest and shortest travels, either end may start. A zig-zag
+  // that starts right next to where the previous one of the same region ended is joined to it
+  // by a short extrusion (across the cut between their cells) instead of a travel.
+  const auto& grids = region_grids_[static_cast<size_t>(ip.index)];
+  auto joinable = [&](const PathPlan& a, const PathPlan& b, const geo::Point& from, const geo::Point& to) {
+    if (a.kind != b.kind || a.width != b.width) return false;
+    const EdgeGrid* grid = nullptr;
+    for (const auto& [kind, g] : grids)
+      if (kind == b.kind) grid = &g;
+    double s = bead_spacing_mm(b.width, height_);
+    double pitch =
+        b.kind == PathKind::Infill ? s / std::max(1e-3, std::min(1.0, b.props[PropId::InfillDensity])) : s;
+    double limit = std::max(2.5 * s, 1.5 * pitch) * geo::kUnitsPerMm;
+    return grid && dist2(from, to) <= limit * limit && !grid->crosses(from, to);
+  };
+  // A travel costs its length plus this (mm): fewer travels first, then shorter ones.
+  constexpr double kTravelMm = 10;
+  auto step = [&](size_t i, const geo::Point& a, size_t j, const geo::Point& b) {
+    if (i != kStart && joinable(fills[i], fills[j], a, b)) return 0.0;
+    return std::sqrt(dist2(a, b)) * geo::kMmPerUnit + kTravelMm;
+  };
   std::vector<const geo::Ring*> ends;
   for (const auto& f : fills) ends.push_back(&f.pts);
-  std::vector<Visit> visits = chain_open(ends, pos);
+  std::vector<Visit> visits = chain_open_best(ends, pos, step);
   std::vector<PathPlan> chained;
   for (const Visit& v : visits) {
     PathPlan& p = fills[v.index];
@@ -477,6 +497,7 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
     }
     chained.push_back(std::move(p));
   }
+  // Paths of one cell (several runs of a cell that is not monotone) stay together.
   std::vector<int> first_seen;
   for (const auto& p : chained)
     if (std::find(first_seen.begin(), first_seen.end(), p.cell) == first_seen.end())
@@ -485,22 +506,12 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
   for (int c : first_seen)
     for (auto& p : chained)
       if (p.cell == c) out.push_back(std::move(p));
-  // A zig-zag that starts right next to where the previous one of the same region ended is
-  // joined to it by a short extrusion (across the cut between their cells) instead of a travel.
-  const auto& grids = region_grids_[static_cast<size_t>(ip.index)];
   for (size_t i = first_fill + 1; i < out.size(); ++i) {
     PathPlan& prev = out[i - 1];
     PathPlan& p = out[i];
-    if (prev.kind != p.kind || prev.width != p.width || prev.pts.empty() || p.pts.empty()) continue;
-    const EdgeGrid* grid = nullptr;
-    for (const auto& [kind, g] : grids)
-      if (kind == p.kind) grid = &g;
-    double s = bead_spacing_mm(p.width, height_);
-    double pitch =
-        p.kind == PathKind::Infill ? s / std::max(1e-3, std::min(1.0, p.props[PropId::InfillDensity])) : s;
-    double limit = std::max(2.5 * s, 1.5 * pitch) * geo::kUnitsPerMm;
+    if (prev.pts.empty() || p.pts.empty()) continue;
     const geo::Point a = prev.pts.back();
-    if (!grid || dist2(a, p.pts.front()) > limit * limit || grid->crosses(a, p.pts.front())) continue;
+    if (!joinable(prev, p, a, p.pts.front())) continue;
     p.pts.insert(p.pts.begin(), a);
     p.border.insert(p.border.begin(), Border::Artificial);
   }

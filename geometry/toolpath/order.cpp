@@ -1,5 +1,6 @@
 #include "geometry/toolpath/order.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -76,6 +77,58 @@ std::vector<Visit> chain_open(const std::vector<const geo::Ring*>& paths, const 
     pos = brev ? paths[bi]->front() : paths[bi]->back();
   }
   return order;
+}
+
+std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const Point& from,
+                                   const StepCost& cost, size_t max_tries) {
+  const size_t n = paths.size();
+  auto start_of = [&](size_t i, bool rev) -> const Point& {
+    return rev ? paths[i]->back() : paths[i]->front();
+  };
+  auto end_of = [&](size_t i, bool rev) -> const Point& {
+    return rev ? paths[i]->front() : paths[i]->back();
+  };
+  std::vector<char> used(n);
+  // Greedy from `first` (or from the cheapest first step when `first` is kStart); returns its cost.
+  auto greedy = [&](size_t first, bool first_rev, std::vector<Visit>& order) {
+    std::fill(used.begin(), used.end(), 0);
+    order.clear();
+    double total = 0;
+    size_t cur = kStart;
+    Point pos = from;
+    for (size_t step = 0; step < n; ++step) {
+      double bc = 1e300;
+      size_t bi = kStart;
+      bool brev = false;
+      auto consider = [&](size_t i, bool rev) {
+        double c = cost(cur, pos, i, start_of(i, rev));
+        if (c < bc) bc = c, bi = i, brev = rev;
+      };
+      if (step == 0 && first != kStart) {
+        consider(first, first_rev);
+      } else {
+        for (size_t i = 0; i < n; ++i)
+          if (!used[i] && !paths[i]->empty()) consider(i, false), consider(i, true);
+      }
+      if (bi == kStart) break;
+      used[bi] = 1;
+      order.push_back({bi, brev});
+      total += bc;
+      cur = bi;
+      pos = end_of(bi, brev);
+    }
+    return total;
+  };
+  std::vector<Visit> best, order;
+  double best_cost = greedy(kStart, false, best);
+  if (n < 2 || n > max_tries) return best;
+  for (size_t i = 0; i < n; ++i)
+    for (bool rev : {false, true}) {
+      if (paths[i]->empty()) continue;
+      double c = greedy(i, rev, order);
+      if (c < best_cost) best_cost = c, best.swap(order);
+    }
+  return best;
 }
 
 }  // namespace tranche::toolpath

@@ -8,6 +8,8 @@
 // `nearest` starts at the vertex nearest the nozzle.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "geometry/core/geom.h"
@@ -33,5 +35,17 @@ struct Visit {
   bool reversed;
 };
 std::vector<Visit> chain_open(const std::vector<const geo::Ring*>& paths, const geo::Point& from);
+
+// Cost of going from path `i`'s end `a` to path `j`'s start `b` (i = kStart: from the starting
+// point); any unit, lower is better.
+constexpr size_t kStart = static_cast<size_t>(-1);
+using StepCost = std::function<double(size_t i, const geo::Point& a, size_t j, const geo::Point& b)>;
+// The cheapest of greedy orders (each step to the cheapest next path and direction) started
+// from every path in either direction, when there are at most `max_tries` paths; otherwise the
+// one greedy order from `from`. Greedy from the nozzle alone often fills the big cell first and
+// is left with a small one across the part; starting elsewhere lets each cell begin where the
+// previous one ended.
+std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const geo::Point& from,
+                                   const StepCost& cost, size_t max_tries = 48);
 
 }  // namespace tranche::toolpath

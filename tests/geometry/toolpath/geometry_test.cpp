@@ -78,6 +78,28 @@ TEST_CASE("chain: nearest end first, reversing paths when their far end is close
   CHECK(order[1].reversed);
 }
 
+TEST_CASE("chain: the best greedy order leaves no small path stranded across the part") {
+  // A long zig-zag starts right at the nozzle, a short one a little aside: nearest first does
+  // the long one and then crosses back 100 mm for the short one; the short one first costs one
+  // short hop and a travel back to the long one's start.
+  geo::Ring big{geo::to_point(1, 0), geo::to_point(100, 0)};
+  geo::Ring small{geo::to_point(-5, 5), geo::to_point(-5, 10)};
+  StepCost cost = [](size_t, const geo::Point& a, size_t, const geo::Point& b) {
+    return std::sqrt(dist2(a, b)) * geo::kMmPerUnit + 10;
+  };
+  auto greedy = chain_open({&big, &small}, geo::to_point(0, 0));
+  REQUIRE(greedy.size() == 2);
+  CHECK(greedy[0].index == 0);
+  auto best = chain_open_best({&big, &small}, geo::to_point(0, 0), cost);
+  REQUIRE(best.size() == 2);
+  CHECK(best[0].index == 1);
+  CHECK(best[1].index == 0);
+  CHECK_FALSE(best[1].reversed);
+  // Beyond max_tries paths it is the plain greedy order.
+  auto capped = chain_open_best({&big, &small}, geo::to_point(0, 0), cost, 1);
+  CHECK(capped[0].index == 0);
+}
+
 TEST_CASE("motion: trapezoid times") {
   // 100 mm at 50 mm/s from and to rest, 1000 mm/s²: 2 s cruise + 0.05 s extra for the ramps.
   CHECK(trapezoid_time(100, 50, 0, 0, 1000) == Approx(2.05));
