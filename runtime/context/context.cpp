@@ -1,6 +1,7 @@
 #include "runtime/context/context.h"
 
 #include <atomic>
+#include <vector>
 
 namespace tranche::ctx {
 
@@ -60,18 +61,38 @@ Context::Context() : props_(&static_defaults()) {}
 namespace {
 // Generations: a per-thread counter under a per-thread prefix, so no two contexts on any
 // threads ever share one, without a shared atomic on every element.
-uint64_t next_generation() {
+// Reserves `n` consecutive generations and returns the first.
+uint64_t next_generations(uint64_t n) {
   static std::atomic<uint64_t> threads{0};
   thread_local uint64_t prefix = (threads.fetch_add(1) + 1) << 40;
   thread_local uint64_t counter = 0;
-  return prefix | (++counter & ((uint64_t(1) << 40) - 1));
+  uint64_t first = counter + 1;
+  counter += n;
+  return prefix | (first & ((uint64_t(1) << 40) - 1));
+}
+}  // namespace
+
+namespace {
+// Per level, the slots of the fields of that level and deeper (computed once from the schema).
+struct Slots {
+  std::array<std::vector<uint16_t>, schema::kLevelCount> from;
+  Slots() {
+    for (int l = 0; l < schema::kLevelCount; ++l)
+      for (const auto& f : schema::fields())
+        if (static_cast<int>(f.level) >= l) from[static_cast<size_t>(l)].push_back(static_cast<uint16_t>(f.id));
+  }
+};
+const Slots& slots() {
+  static const Slots s;
+  return s;
 }
 }  // namespace
 
 void Context::clear_from(schema::Level level) {
-  for (int l = static_cast<int>(level); l < schema::kLevelCount; ++l) gen_[static_cast<size_t>(l)] = next_generation();
-  for (const auto& f : schema::fields())
-    if (static_cast<int>(f.level) >= static_cast<int>(level)) values_[slot(f.id)] = 0.0;
+  const auto l0 = static_cast<size_t>(level);
+  uint64_t g = next_generations(static_cast<size_t>(schema::kLevelCount) - l0);
+  for (size_t l = l0; l < static_cast<size_t>(schema::kLevelCount); ++l) gen_[l] = g++;
+  for (uint16_t i : slots().from[l0]) values_[i] = 0.0;
   if (static_cast<int>(level) <= static_cast<int>(schema::Level::Path)) {
     points_ = {};
     pieces_ = {};

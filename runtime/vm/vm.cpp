@@ -16,11 +16,6 @@ namespace tranche::vm {
 using schema::Level;
 using schema::Stage;
 
-Counters& thread_counters() {
-  thread_local Counters c;
-  return c;
-}
-
 namespace {
 
 // Registers of every frame of the calling thread: frames nest (a value that reads its own
@@ -43,12 +38,14 @@ struct ThreadState {
   };
   std::array<Live, schema::kPropCount> live;
   std::string text;  // the template being built
+  Counters counters;
 };
 
 ThreadState& state() {
   thread_local ThreadState s;
   return s;
 }
+
 
 enum class Fault : uint8_t { None, DivZero, ModZero, SqrtNeg, NotFinite, TextTooLong, OutputTooLong, Steps,
                              Depth, Api };
@@ -80,9 +77,8 @@ class Machine {
   ctx::ReplaceApi* api = nullptr;
 
   ~Machine() {
-    auto& c = thread_counters();
-    c.conjuncts_run += run_;
-    c.live_rebuilds += rebuilds_;
+    st_.counters.conjuncts_run += run_;
+    st_.counters.live_rebuilds += rebuilds_;
   }
 
   // Runs chunk `ci`; false on a fault (see error()).
@@ -573,6 +569,8 @@ Error Machine::error() const {
 namespace {
 std::atomic<uint32_t> next_uid{1};
 }
+
+Counters& thread_counters() { return state().counters; }
 
 RuleSet::RuleSet(Program p) : program_(std::move(p)), uid_(next_uid.fetch_add(1)) {}
 
