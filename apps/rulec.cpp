@@ -38,7 +38,9 @@ constexpr const char* kUsage =
     "Exit status: 0 no errors (warnings allowed), 1 errors, 2 usage error.\n"
     "\n"
     "options:\n"
-    "  --format text|json     diagnostics for people (stderr) or one JSON object per line (stdout)\n"
+    "  --format text|json|sarif\n"
+    "                         diagnostics for people (stderr), one JSON object per line (stdout),\n"
+    "                         or one SARIF 2.1.0 log (stdout)\n"
     "  --stdlib DIR           where `use \"printers/...\"` looks first\n"
     "  --set KEY=VALUE        a command-line override too (an implicit last rule)\n"
     "  -W error, --deny-warnings\n"
@@ -82,8 +84,8 @@ int parse(int argc, char** argv, Args& a) {
       return 0;
     } else if (s == "--format") {
       const char* v = value();
-      if (!v || (std::string_view(v) != "text" && std::string_view(v) != "json"))
-        return usage_error("--format takes `text` or `json`");
+      if (!v || (std::string_view(v) != "text" && std::string_view(v) != "json" && std::string_view(v) != "sarif"))
+        return usage_error("--format takes `text`, `json` or `sarif`");
       a.format = v;
     } else if (s == "--stdlib") {
       const char* v = value();
@@ -170,7 +172,9 @@ bool front(const Args& a, Front& f) {
   bool use_color = a.color == "always" ||
                    (a.color == "auto" && isatty(2) && std::getenv("NO_COLOR") == nullptr &&
                     std::string_view(std::getenv("TERM") ? std::getenv("TERM") : "dumb") != "dumb");
+  if (a.format == "sarif") std::fputs(compiler::render_sarif(f.program.sources, f.sink.all()).c_str(), stdout);
   for (const auto& d : f.sink.all()) {
+    if (a.format == "sarif") break;
     if (a.format == "json")
       std::printf("%s\n", compiler::render_json(f.program.sources, d).c_str());
     else

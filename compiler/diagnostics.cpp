@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <set>
+
 #include <algorithm>
 #include <map>
 
@@ -182,6 +184,56 @@ std::string render_json(const ast::SourceMap& sources, const diag::Diagnostic& d
     out += json_string(d.helps[i]);
   }
   return out + "]}";
+}
+
+std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::Diagnostic>& all) {
+  // SARIF 2.1.0: one run of rulec, one result per diagnostic, its primary span as the location
+  // and the secondary ones as related locations; notes and helps are appended to the message.
+  std::set<std::string> codes;
+  for (const auto& d : all) codes.insert(d.code);
+  std::string out =
+      "{\"$schema\":\"https://json.schemastore.org/sarif-2.1.0.json\",\"version\":\"2.1.0\",\"runs\":[{"
+      "\"tool\":{\"driver\":{\"name\":\"rulec\",\"informationUri\":\"docs/diagnostics.md\",\"rules\":[";
+  bool first = true;
+  for (const auto& c : codes) {
+    out += fmt::format("{}{{\"id\":{},\"helpUri\":{}}}", first ? "" : ",", json_string(c),
+                       json_string("docs/diagnostics.md#" + c));
+    first = false;
+  }
+  out += "]}},\"results\":[";
+  auto location = [&](const diag::Label& l) {
+    auto [end_line, end_col] =
+        l.span.valid() ? sources.line_col(l.span.file, l.span.end()) : std::pair<uint32_t, uint32_t>{0, 0};
+    std::string region = l.span.valid() ? fmt::format(",\"region\":{{\"startLine\":{},\"startColumn\":{},"
+                                                      "\"endLine\":{},\"endColumn\":{}}}",
+                                                      l.span.line, l.span.col, end_line, end_col)
+                                        : std::string();
+    std::string msg = l.text.empty() ? std::string() : fmt::format(",\"message\":{{\"text\":{}}}", json_string(l.text));
+    return fmt::format("{{\"physicalLocation\":{{\"artifactLocation\":{{\"uri\":{}}}{}}}{}}}",
+                       json_string(sources.file(l.span.file).path), region, msg);
+  };
+  first = true;
+  for (const auto& d : all) {
+    std::string text = d.message;
+    for (const auto& n : d.notes) text.append("\nnote: ").append(n);
+    for (const auto& h : d.helps) text.append("\nhelp: ").append(h);
+    out += fmt::format("{}{{\"ruleId\":{},\"level\":\"{}\",\"message\":{{\"text\":{}}}", first ? "" : ",",
+                       json_string(d.code), d.severity == diag::Severity::Error ? "error" : "warning",
+                       json_string(text));
+    first = false;
+    std::string primary, related;
+    for (const auto& l : d.labels) {
+      if (l.span.file >= sources.size()) continue;
+      if (primary.empty())
+        primary = location(l);
+      else
+        related.append(related.empty() ? "" : ",").append(location(l));
+    }
+    if (!primary.empty()) out.append(",\"locations\":[").append(primary).append("]");
+    if (!related.empty()) out.append(",\"relatedLocations\":[").append(related).append("]");
+    out += "}";
+  }
+  return out + "]}]}\n";
 }
 
 std::string summary(size_t errors, size_t warnings) {

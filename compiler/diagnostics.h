@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "compiler/ast/diagnostic.h"
 #include "compiler/ast/source.h"
@@ -17,6 +18,8 @@ namespace tranche::compiler {
 
 std::string render_text(const ast::SourceMap& sources, const diag::Diagnostic& d, bool color);
 std::string render_json(const ast::SourceMap& sources, const diag::Diagnostic& d);
+// Every diagnostic as one SARIF 2.1.0 log (for code-scanning tools), with a newline.
+std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::Diagnostic>& all);
 // "2 errors, 1 warning"
 std::string summary(size_t errors, size_t warnings);
 // A JSON string literal (quotes included) for UTF-8 text.

@@ -95,3 +95,18 @@ TEST_CASE("diagnostics: policy drops allowed warnings and promotes the rest") {
   CHECK(c.sink.errors() == 1);
   CHECK(compiler::summary(1, 0) == "1 error, 0 warnings");
 }
+
+TEST_CASE("diagnostics: SARIF 2.1.0, one result per diagnostic with its primary location") {
+  test::Compiled c;
+  test::compile_text(c, "rule \"x\" when layer.indx < 2 { sped = 20 mm/s }\n");
+  REQUIRE(c.sink.all().size() == 2);
+  std::string s = compiler::render_sarif(c.program.sources, c.sink.all());
+  CHECK(s.find("\"version\":\"2.1.0\"") != std::string::npos);
+  CHECK(s.find("{\"id\":\"E0102\",\"helpUri\":\"docs/diagnostics.md#E0102\"}") != std::string::npos);
+  CHECK(s.find("\"ruleId\":\"E0103\",\"level\":\"error\"") != std::string::npos);
+  CHECK(s.find("\"region\":{\"startLine\":1,\"startColumn\":15,\"endLine\":1,\"endColumn\":25}") != std::string::npos);
+  CHECK(s.find("help: did you mean `speed`?") != std::string::npos);
+  CHECK(s.back() == '\n');
+  // An empty run is still a valid log.
+  CHECK(compiler::render_sarif(c.program.sources, {}).find("\"results\":[]") != std::string::npos);
+}
