@@ -41,14 +41,12 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   }
   if (n == 0) return;
   edges_.reserve(n);
-  where_.reserve(n);
-  for (uint32_t k = 0; k < rings.size(); ++k) {
-    const auto& r = rings[k];
-    for (uint32_t i = 0; i < r.size(); ++i) {
-      edges_.push_back({r[i], r[(i + 1) % r.size()]});
-      where_.emplace_back(k, i);
-    }
+  ring_start_.reserve(rings.size() + 1);
+  for (const auto& r : rings) {
+    ring_start_.push_back(static_cast<uint32_t>(edges_.size()));
+    for (size_t i = 0; i < r.size(); ++i) edges_.push_back({r[i], r[(i + 1) % r.size()]});
   }
+  ring_start_.push_back(static_cast<uint32_t>(edges_.size()));
   double w = static_cast<double>(box.max_x - box.min_x) + 1,
          h = static_cast<double>(box.max_y - box.min_y) + 1;
   if (cell <= 0) {
@@ -62,6 +60,8 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   cell_ = cell;
   x0_ = box.min_x;
   y0_ = box.min_y;
+  x1_ = box.max_x;
+  y1_ = box.max_y;
   nx_ = static_cast<int>(w / static_cast<double>(cell_)) + 1;
   ny_ = static_cast<int>(h / static_cast<double>(cell_)) + 1;
   size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
@@ -111,6 +111,9 @@ void EdgeGrid::visit_segment_cells(const Point& a, const Point& b, F&& f) const 
 
 bool EdgeGrid::crosses(const Point& a, const Point& b) const {
   if (edges_.empty()) return false;
+  if (std::max(a.X, b.X) < x0_ || std::max(a.Y, b.Y) < y0_ || std::min(a.X, b.X) > x1_ ||
+      std::min(a.Y, b.Y) > y1_)
+    return false;  // clear of every edge's bounding box
   bool hit = false;
   visit_segment_cells(a, b, [&](int x, int y) {
     if (hit) return;
@@ -193,7 +196,9 @@ std::vector<EdgeGrid::Hit> EdgeGrid::hits(const Point& a, const Point& b) const 
       if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
       seen.push_back(id);
       double t = (double(e.a.X - a.X) * sy - double(e.a.Y - a.Y) * sx) / den;
-      out.push_back({std::clamp(t, 0.0, 1.0), where_[id].first, where_[id].second});
+      auto ring = static_cast<uint32_t>(std::upper_bound(ring_start_.begin(), ring_start_.end(), id) -
+                                        ring_start_.begin() - 1);
+      out.push_back({std::clamp(t, 0.0, 1.0), ring, id - ring_start_[ring]});
     }
   });
   std::sort(out.begin(), out.end(), [](const Hit& x, const Hit& y) { return x.t < y.t; });

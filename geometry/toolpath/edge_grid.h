@@ -45,8 +45,8 @@ class EdgeGrid {
   int cy(geo::coord_t y) const;
 
   std::vector<Edge> edges_;
-  std::vector<std::pair<uint32_t, uint32_t>> where_;  // edge -> (ring, index in ring)
-  geo::coord_t x0_ = 0, y0_ = 0, cell_ = 1;
+  std::vector<uint32_t> ring_start_;  // edges of ring k are edges_[ring_start_[k] .. ring_start_[k+1])
+  geo::coord_t x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0, cell_ = 1;  // x1_, y1_: the edges' bounding box
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> start_;  // CSR: edges of cell i are items_[start_[i] .. start_[i+1])
   std::vector<uint32_t> items_;
