@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 
 #include <atomic>
@@ -127,7 +128,8 @@ class PrintWriter final : public ctx::LineSink {
                                  geo::to_mm(box.max_x - box.min_x), geo::to_mm(box.max_y - box.min_y),
                                  P[PropId::BedSizeX], P[PropId::BedSizeY]));
     }
-    setup_.layers = layers;
+    simplify_layers(layers);
+    setup_.layers = simplified_;
     setup_.rules = job_.rules;
     // The skirt surrounds the convex hull of the first layer.
     geo::Ring pts;
@@ -147,6 +149,32 @@ class PrintWriter final : public ctx::LineSink {
     first_ctx_ = c0;
     flavor_ = static_cast<schema::Flavor>(static_cast<int>(P[PropId::GcodeFlavor]));
     return ok_status();
+  }
+
+  // Each layer's islands are read by its own task and by its neighbours' (skins, support,
+  // overhang): simplified once here, in parallel, instead of by every reader. Only what the
+  // toolpath stage reads is kept (no slicing loops, no cells).
+  void simplify_layers(std::span<const geo::Layer> layers) {
+    const geo::coord_t tol = geo::to_units(setup_.simplify_mm);
+    simplified_.resize(layers.size());
+    tbb::parallel_for(size_t{0}, layers.size(), [&](size_t i) {
+      const geo::Layer& src = layers[i];
+      geo::Layer& dst = simplified_[i];
+      dst.index = src.index;
+      dst.z_bottom = src.z_bottom;
+      dst.z_top = src.z_top;
+      dst.islands.reserve(src.islands.size());
+      for (const auto& isl : src.islands) {
+        geo::Island out;
+        out.shape.outer = toolpath::simplify(isl.shape.outer, tol);
+        if (out.shape.outer.empty()) continue;  // narrower than the tolerance
+        for (const auto& h : isl.shape.holes)
+          if (auto s = toolpath::simplify(h, tol); !s.empty()) out.shape.holes.push_back(std::move(s));
+        out.area_mm2 = isl.area_mm2;
+        out.fill_angle_deg = isl.fill_angle_deg;
+        dst.islands.push_back(std::move(out));
+      }
+    });
   }
 
   static geo::Rings convex_hull(geo::Ring pts) {
@@ -230,7 +258,8 @@ class PrintWriter final : public ctx::LineSink {
     // that a print never starts cold. Then the E mode.
     if (Status st = write(";TYPE:Custom\n"); !st) return st;
     std::string start;
-    if (Status st = executors(Level::Print, ctx::When::Before, first_ctx_, first_layer_props_, &start); !st) return st;
+    if (Status st = executors(Level::Print, ctx::When::Before, first_ctx_, first_layer_props_, &start); !st)
+      return st;
     std::string s;
     if (!sets_temperatures(start)) {
       s += fmt::format("M190 S{:g} ; no temperature in the start G-code: heat and wait\n",
@@ -471,6 +500,7 @@ class PrintWriter final : public ctx::LineSink {
   Slot time_slot_, mm_slot_, cm3_slot_, g_slot_, cura_time_slot_, cura_fil_slot_;
   double fan_ = -1, nozzle_ = -1, bed_ = -1;
   GcodeSummary summary_;
+  std::vector<geo::Layer> simplified_;  // what setup_.layers shows
 };
 
 }  // namespace

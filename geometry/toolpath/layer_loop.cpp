@@ -312,7 +312,7 @@ Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip
   geo::Rings rings;
   rings.push_back(src.shape.outer);
   for (const auto& h : src.shape.holes) rings.push_back(h);
-  ip.shape = simplify(rings, geo::to_units(S.simplify_mm));
+  ip.shape = std::move(rings);  // simplified once for all readers (PrintSetup::layers)
   script_angle_ = src.fill_angle_deg;
   if (Status s = island_decide(ip); !s) return s;
   if (has_repl_island_) {

@@ -19,14 +19,14 @@ namespace tranche::toolpath {
 
 // What every layer task shares, read-only.
 struct PrintSetup {
-  std::span<const geo::Layer> layers;
+  std::span<const geo::Layer> layers;  // islands already simplified by simplify_mm
   ctx::Rules rules;
   ctx::Context print_ctx;           // print fields set, layer table bound
   ctx::PropertyValues print_props;  // after the print stage
   geo::Point shift;                 // model units + shift = bed units
   MotionLimits motion;
   geo::Rings skirt_around;     // what the skirt surrounds (convex hull of layer 0)
-  double simplify_mm = 0.005;  // tolerance applied to island outlines
+  double simplify_mm = 0.0125;  // mm: island outlines are simplified this much (PrusaSlicer's resolution)
 };
 
 // Plans layer `index`. Warnings (cells that are not monotone, ...) go to `report`.
