@@ -270,7 +270,8 @@ TEST_CASE("docs/cli.md: documents exactly the options of tranche --help and rule
 
 TEST_CASE("docs: relative links in the user documentation point at existing files") {
   fs::path root = test::source_dir();
-  std::vector<fs::path> pages = {root / "README.md", root / "stdlib" / "README.md", root / "examples" / "README.md"};
+  std::vector<fs::path> pages = {root / "README.md", root / "stdlib" / "README.md", root / "examples" / "README.md",
+                                 root / "editors" / "README.md"};
   for (const auto& e : fs::directory_iterator(root / "docs"))
     if (e.path().extension() == ".md") pages.push_back(e.path());
   for (const auto& e : fs::directory_iterator(root / "examples"))
