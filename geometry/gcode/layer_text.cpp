@@ -178,10 +178,10 @@ class Formatter final : public ctx::LineSink {
       travel(p.pts.front(), retract);
     }
     type(p.kind, p.width);
-    double epm = toolpath::bead_area_mm2(p.width, height_) * p.flow_scale / filament_area_;
+    double epm = toolpath::bead_area_mm2(p.width, height_) / filament_area_;
     for (size_t i = 0; i < p.piece_count(); ++i) {
       const auto& pc = p.piece(i);
-      extrude(p.pts[i + 1], pc.speed, epm * pc.flow);
+      extrude(p.pts[i + 1], pc.speed, epm * pc.flow * p.piece_scale(i));
     }
   }
   void op(const IslandPlan*, const PathPlan* p, const Op& o) {
@@ -307,7 +307,8 @@ class Formatter final : public ctx::LineSink {
     e_exact_ += len * e_per_mm;
     // A move that rounds to where the nozzle already is (to the micrometre written) is not
     // written: its plastic, if any, goes with the next move, whose E is computed from the total.
-    if (round_div(to.X, 1000) == round_div(pos_.X, 1000) && round_div(to.Y, 1000) == round_div(pos_.Y, 1000)) {
+    if (round_div(to.X, 1000) == round_div(pos_.X, 1000) &&
+        round_div(to.Y, 1000) == round_div(pos_.Y, 1000)) {
       pos_ = to;
       return;
     }

@@ -417,6 +417,7 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
       p.cell = cell.index;
       p.width = static_cast<float>(w);
       p.flow_scale = static_cast<float>(flow_scale);
+      if (solid) p.border_flow = 0.5f;
       p.pts = std::move(fp.pts);
       p.border = std::move(fp.border);
       p.props = *props;
@@ -672,7 +673,7 @@ struct TimeVisitor {
     for (size_t i = 0; i < p.piece_count(); ++i) {
       const auto& pp = p.piece(i);
       double len = std::sqrt(dist2(p.pts[i], p.pts[i + 1])) * geo::kMmPerUnit;
-      extrude(p.pts[i + 1], pp.speed, len * area * pp.flow * p.flow_scale);
+      extrude(p.pts[i + 1], pp.speed, len * area * pp.flow * p.piece_scale(i));
     }
   }
   void op(const IslandPlan*, const PathPlan*, const Op& op) {

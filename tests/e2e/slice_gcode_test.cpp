@@ -41,7 +41,8 @@ std::string write_mesh(const test::TempDir& dir, const std::string& name, const 
 // Slices `mesh` with the given --set options into dir/NAME.gcode and re-slices the mesh the same
 // way for the geometric checks.
 Sliced slice(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
-             std::vector<std::pair<std::string, std::string>> sets = {}, const std::string& printer = "generic-marlin") {
+             std::vector<std::pair<std::string, std::string>> sets = {},
+             const std::string& printer = "generic-marlin") {
   pipeline::SliceOptions o;
   o.quiet = true;
   o.printer = printer;
@@ -237,6 +238,31 @@ SCENARIO("travels comb around holes instead of retracting") {
   }
 }
 
+SCENARIO("a solid zig-zag's connectors along the border lay half a bead") {
+  test::TempDir dir("e2e-connectors");
+  GIVEN("a 20 × 20 mm box, whose first layer is solid at 45° and whose walls run along x and y") {
+    auto s = slice(dir, "box", geo::box({20, 20, 2}), {{"skirt_loops", "0"}});
+    // E per mm of the first layer's solid moves: the lines run diagonally, the connectors that
+    // join them run along the (axis-parallel) border, over the ends of the lines they join.
+    double line_e = 0, line_mm = 0, conn_e = 0, conn_mm = 0;
+    for (const auto& m : s.gcode.moves) {
+      if (m.layer != 0 || !m.has_xy || m.de <= 0 || m.type != "Solid infill") continue;
+      double dx = m.x - m.x0, dy = m.y - m.y0, len = std::hypot(dx, dy);
+      if (len < 1e-3) continue;
+      if (std::abs(std::abs(dx) - std::abs(dy)) < 0.02 * len) {
+        line_e += m.de, line_mm += len;
+      } else if (std::abs(dx) < 1e-3 || std::abs(dy) < 1e-3) {
+        conn_e += m.de, conn_mm += len;
+      }
+    }
+    THEN("a connector lays half the plastic per mm of a line") {
+      REQUIRE(line_mm > 100);
+      REQUIRE(conn_mm > 5);
+      CHECK(conn_e / conn_mm == doctest::Approx(0.5 * line_e / line_mm).epsilon(0.03));
+    }
+  }
+}
+
 SCENARIO("--set changes what it should") {
   test::TempDir dir("e2e-set");
   const geo::Mesh cube = geo::box({15, 15, 4});
@@ -320,7 +346,8 @@ SCENARIO("relative and absolute E describe the same extrusion") {
 SCENARIO("a failing write leaves no file behind") {
   test::TempDir dir("e2e-fail");
   // The end G-code fails (a division by zero at run time) after everything else is written.
-  std::ofstream(dir / "late.rules") << "rule { after print { gcode \"M117 {1 mm / (print.height - print.height)}\" } }\n";
+  std::ofstream(dir / "late.rules")
+      << "rule { after print { gcode \"M117 {1 mm / (print.height - print.height)}\" } }\n";
   pipeline::SliceOptions o;
   o.quiet = true;
   o.model = write_mesh(dir, "cube.stl", geo::box({10, 10, 2}));
