@@ -53,6 +53,30 @@ TEST_CASE("features/bridges: bridge paths thin and slow, full fan over a gap eve
     if (extrudes(mv) && mv.layer >= 3 && mv.layer < 14) CHECK(mv.fan == doctest::Approx(0.15).epsilon(0.02));
 }
 
+TEST_CASE("features/bridges: on a mostly supported island only the bridge paths change") {
+  TempDir dir("feat-bridges-path");
+  // 7 mm pillars, 6 mm apart: the slab's first layer is 70% supported; its middle is a bridge.
+  geo::Mesh m = geo::box({7, 20, 3});
+  geo::append(m, geo::box({7, 20, 3}, {13, 0, 0}));
+  geo::append(m, geo::box({20, 20, 1}, {0, 0, 3}));
+  auto g = slice_with(dir, "bridges", m, Profile().material("abs").feature("bridges").set("min_layer_time", "0"));
+  int bridge = 0, walls = 0;
+  for (const auto& mv : g.moves) {
+    if (!extrudes(mv) || mv.layer != 15) continue;
+    if (mv.type == "Bridge infill") {
+      ++bridge;
+      CHECK(mv.f == 1200);
+      CHECK(mv.fan == doctest::Approx(1.0));
+    } else if (mv.type == "External perimeter") {
+      ++walls;
+      CHECK(mv.f == 25 * 60);
+      CHECK(mv.fan == doctest::Approx(0.15).epsilon(0.02));
+    }
+  }
+  CHECK(bridge > 3);
+  CHECK(walls > 3);
+}
+
 TEST_CASE("features/small-island-cooling: a 2 x 2 mm pin is slower and fully cooled, the big part is not") {
   TempDir dir("feat-small");
   geo::Mesh m = geo::box({20, 20, 3});
