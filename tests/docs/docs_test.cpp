@@ -1,6 +1,7 @@
 // User documentation that must not drift from the code:
 // - every ```rules block of docs/guide.md compiles as written (or gives its `# expect` diagnostic);
 // - the Fields, Properties and enum tables of docs/language.md are the schema's, regenerated here;
+//   its units, events and functions are those of the schema and the compiler;
 // - docs/cli.md documents exactly the options `tranche --help` and `rulec --help` print;
 // - relative links in the user documentation point at files that exist.
 #include <array>
@@ -248,6 +249,56 @@ TEST_CASE("docs/language.md: every unit and context level of the schema is descr
     INFO(level);
     CHECK(md.find("`" + level + ".") != std::string::npos);  // its fields
   }
+}
+
+namespace {
+
+// Compiles `text` as docs/NAME; returns every diagnostic, rendered as text.
+std::string diagnostics_of(const std::string& text) {
+  compiler::FrontendOptions options;
+  options.stdlib_dir = (test::source_dir() / "stdlib").string();
+  diag::Sink sink;
+  ast::Program program;
+  compiler::load_source(program, (test::source_dir() / "docs" / "probe.rules").string(), text, options, sink);
+  if (compiler::check(program, sink) && !sink.has_errors()) compiler::lint(program, sink);
+  sink.finish({});
+  std::string out;
+  for (const auto& d : sink.all()) out += compiler::render_text(program.sources, d, false);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("docs/language.md: the functions table lists every function the compiler knows") {
+  std::string md = read(test::source_dir() / "docs" / "language.md");
+  std::string table = table_after(md, "\n| function | arguments | result |\n");
+  REQUIRE_FALSE(table.empty());
+  // The compiler names its functions when it meets an unknown one.
+  std::string d = diagnostics_of("rule { speed = nosuchfunction(1 mm/s) }\n");
+  std::smatch m;
+  REQUIRE_MESSAGE(std::regex_search(d, m, std::regex("functions are ([^\n]*)")), d);
+  std::string list = m[1];
+  std::regex name("`([a-z0-9_]+)`");
+  int n = 0;
+  for (std::sregex_iterator it(list.begin(), list.end(), name), end; it != end; ++it, ++n) {
+    INFO((*it)[1]);
+    CHECK(table.find("`" + std::string((*it)[1]) + "(") != std::string::npos);
+  }
+  CHECK(n >= 10);
+}
+
+TEST_CASE("docs/language.md: every event is described, and compiles") {
+  std::string md = read(test::source_dir() / "docs" / "language.md");
+  for (int l = 0; l < schema::kLevelCount; ++l) {
+    auto level = static_cast<schema::Level>(l);
+    if (level == schema::Level::Piece) continue;  // pieces are reached by looping over path.pieces
+    std::string name(schema::level_name(level));
+    INFO(name);
+    CHECK(md.find("\"" + name + "\"") != std::string::npos);  // in the grammar's LEVEL
+    for (const char* event : {"start", "end"})
+      CHECK(diagnostics_of("on " + name + "." + event + " { comment \"x\" }\n").empty());
+  }
+  CHECK_FALSE(diagnostics_of("on piece.start { comment \"x\" }\n").empty());
 }
 
 TEST_CASE("docs/cli.md: documents exactly the options of tranche --help and rulec --help") {
