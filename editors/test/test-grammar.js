@@ -1,7 +1,7 @@
 #!/usr/bin/env node
-// Tokenizes every stdlib and example .rules file (and the rules blocks of docs/guide.md) with
-// editors/tranche-rules.tmLanguage.json, through vscode-textmate and vscode-oniguruma as VS Code
-// does, and checks:
+// Tokenizes every stdlib and example .rules file and the rules blocks of docs/guide.md and
+// docs/language.md with editors/tranche-rules.tmLanguage.json, through vscode-textmate and
+// vscode-oniguruma as VS Code does, and checks:
 // - nothing that is not white space is left with the root scope only (every token matched);
 // - reserved words are keywords, comments are comments, strings are strings;
 // - every number with a unit: the number is constant.numeric, the unit keyword.other.unit;
@@ -46,20 +46,22 @@ function sources() {
   const out = [];
   for (const dir of ['stdlib', 'examples'])
     for (const f of walk(path.join(root, dir), []).sort()) out.push([path.relative(root, f), fs.readFileSync(f, 'utf8')]);
-  const guide = fs.readFileSync(path.join(root, 'docs', 'guide.md'), 'utf8').split('\n');
-  let block = null;
-  let start = 0;
-  guide.forEach((line, i) => {
-    if (block === null && line === '```rules') {
-      block = [];
-      start = i + 2;
-    } else if (block !== null && line === '```') {
-      out.push([`docs/guide.md:${start}`, block.join('\n') + '\n']);
-      block = null;
-    } else if (block !== null) {
-      block.push(line);
-    }
-  });
+  for (const doc of ['guide.md', 'language.md']) {
+    const lines = fs.readFileSync(path.join(root, 'docs', doc), 'utf8').split('\n');
+    let block = null;
+    let start = 0;
+    lines.forEach((line, i) => {
+      if (block === null && line === '```rules') {
+        block = [];
+        start = i + 2;
+      } else if (block !== null && line === '```') {
+        out.push([`docs/${doc}:${start}`, block.join('\n') + '\n']);
+        block = null;
+      } else if (block !== null) {
+        block.push(line);
+      }
+    });
+  }
   return out;
 }
 
