@@ -117,6 +117,10 @@ TEST_CASE("examples: at least eight, each with a README, one .rules file, a mode
     CHECK((fs::exists(d / "make_model.py") || fs::exists(d / std::string(m[1]))));
     // No third-party model files: models are generated, or hand-written SVG.
     for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().extension() != ".stl");
+    // Each example is run, and its point asserted, by a test case of this file.
+    std::string self = read(source_dir() / "tests" / "examples" / "examples_test.cpp");
+    CHECK_MESSAGE(self.find("run_example(dir, \"" + n + "\")") != std::string::npos,
+                  "examples/" << n << " has no test case in tests/examples/examples_test.cpp");
   }
 }
 
