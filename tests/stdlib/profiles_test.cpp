@@ -2,6 +2,8 @@
 // firmware receives (start and end G-code, temperatures, fan, retraction, speeds).
 #include <doctest/doctest.h>
 
+#include <fstream>
+#include <iterator>
 #include <set>
 
 #include "tests/stdlib/stdlib_helpers.h"
@@ -115,4 +117,27 @@ TEST_CASE("materials: PETG retracts 20% more with a z hop; TPU is slow and retra
   CHECK(retractions(tpu) == std::set<double>{1.0});
   for (const auto& m : tpu.moves)
     if (extrudes(m) && m.layer >= 0) CHECK(m.f <= 1200);
+}
+
+TEST_CASE("stdlib: every file starts with a comment saying what it is, and every one is sliced by these tests") {
+  std::string self;
+  for (const char* f : {"features_test.cpp", "profiles_test.cpp"}) {
+    std::ifstream in(source_dir() / "tests" / "stdlib" / f);
+    self += std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  int files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(stdlib_path())) {
+    if (e.path().extension() != ".rules") continue;
+    ++files;
+    std::ifstream in(e.path());
+    std::string first;
+    std::getline(in, first);
+    INFO(e.path().string());
+    CHECK(first.rfind("# ", 0) == 0);
+    std::string kind = e.path().parent_path().filename().string(), name = e.path().stem().string();
+    if (kind == "features") CHECK(self.find(".feature(\"" + name + "\")") != std::string::npos);
+    if (kind == "printers") CHECK(self.find("{\"" + name + "\", {") != std::string::npos);
+    if (kind == "materials") CHECK(self.find("{\"" + name + "\", ") != std::string::npos);
+  }
+  CHECK(files >= 22);
 }
