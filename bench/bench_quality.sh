@@ -5,7 +5,8 @@
 # against PrusaSlicer's, travel moves and retractions, and tranche's ratios to each peer.
 #   bench/bench_quality.sh [BUILD_DIR]
 #   env: MODELS="torus cone ..." (default: PrusaSlicer's shapes, the Stanford bunny, a plate with
-#        holes), SLICERS="tranche prusa cura", GCHECK=path/to/gcheck.py, OUT=dir to keep files
+#        holes), SLICERS="tranche tranche_comb prusa cura", GCHECK=path/to/gcheck.py, OUT=dir to
+#        keep files. tranche_comb (tranche with CuraEngine's retraction policy) is only counted.
 set -uo pipefail
 build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -16,7 +17,7 @@ if [[ ! -f $GCHECK ]]; then
   echo "bench_quality: gcheck not found (set GCHECK=path/to/gcheck.py)"
   exit 1
 fi
-SLICERS=${SLICERS:-tranche prusa cura}
+SLICERS=${SLICERS:-tranche tranche_comb prusa cura}
 MODELS=${MODELS:-bunny torus M3_hex_nut M3x10_screw sphere cone stanford_bunny plate_holes}
 out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-quality-XXXXXX")}
 [[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
@@ -35,6 +36,10 @@ while read -r name model; do
     rc=$?
     if [[ ! -s $g ]]; then
       printf '%s\t%s\tfailed (exit %s: %s)\n' "$name" "$s" "$rc" "$(grep -v '^\s*$' "$out/$name.$s.log" | tail -1 | cut -c1-60)" >>"$rows"
+      continue
+    fi
+    if [[ $s == tranche_comb ]]; then
+      /usr/bin/python3 "$here/quality_row.py" "$name" "$s" - "$g" >>"$rows"
       continue
     fi
     # Every slicer centres the model's bounding box on the bed's centre: tell gcheck, instead of

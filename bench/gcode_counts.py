@@ -2,9 +2,11 @@
 """Counts what a G-code file makes the printer do: layers, travel moves, retractions, filament.
 
 usage: gcode_counts.py FILE.gcode [--filament 1.75]
-Prints one line: layers travels retractions filament_mm filament_mm3 extrude_mm travel_mm.
-A travel is a G0/G1 move in X/Y that does not extrude; a retraction is one run of consecutive
-moves that pull E back (as gcheck counts them), or a G10. Handles G90/G91, M82/M83 and G92.
+Prints one line: layers travels retractions filament_mm filament_mm3 extrude_mm travel_mm trips.
+A travel is a G0/G1 move in X/Y that does not extrude; a trip is a run of travel moves between
+two extrusions (a combed travel of several moves is one trip); a retraction is one run of
+consecutive moves that pull E back (as gcheck counts them), or a G10. Handles G90/G91, M82/M83
+and G92.
 """
 import math
 import re
@@ -22,6 +24,8 @@ def counts(path, filament=1.75):
     travels = retracts = 0
     fed = ext_len = trav_len = 0.0
     in_retract = False
+    trips = 0
+    in_trip = False
     with open(path, errors='replace') as f:
         for line in f:
             line = line.split(';', 1)[0].strip()
@@ -66,21 +70,25 @@ def counts(path, filament=1.75):
                     layers.add(round(z, 3))
                     ext_len += d
                     fed += de
+                    in_trip = False
                 elif d > 0:
                     travels += 1
                     trav_len += d
+                    if not in_trip:
+                        trips += 1
+                    in_trip = True
                 elif de > 1e-9:
                     fed += 0  # unretraction: not new plastic
                 x, y = nx, ny
     area = math.pi * filament * filament / 4
-    return len(layers), travels, retracts, fed, fed * area, ext_len, trav_len
+    return len(layers), travels, retracts, fed, fed * area, ext_len, trav_len, trips
 
 
 def main():
     path = sys.argv[1]
     fil = float(sys.argv[sys.argv.index('--filament') + 1]) if '--filament' in sys.argv else 1.75
-    n, t, r, fed, vol, el, tl = counts(path, fil)
-    print(f'{n} {t} {r} {fed:.1f} {vol:.1f} {el:.1f} {tl:.1f}')
+    n, t, r, fed, vol, el, tl, trips = counts(path, fil)
+    print(f'{n} {t} {r} {fed:.1f} {vol:.1f} {el:.1f} {tl:.1f} {trips}')
 
 
 if __name__ == '__main__':

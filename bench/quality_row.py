@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Rows and table for bench_quality.sh.
 
-quality_row.py NAME SLICER GCHECK.json FILE.gcode   prints one tab-separated row
+quality_row.py NAME SLICER GCHECK.json FILE.gcode   prints one tab-separated row (GCHECK.json "-":
+                                                     counts only, gcheck's columns left empty)
 quality_row.py --table ROWS.tsv                      prints the table and tranche's ratios
 quality_row.py --offset MODEL.stl X,Y                prints gcheck's --offset for a model whose
                                                      bounding box every slicer centres on X,Y
@@ -14,12 +15,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gcode_counts import counts  # noqa: E402
 
 COLS = ['model', 'slicer', 'verdict', 'layers', 'band', 'band_p05', 'skin', 'overflow', 'overlap',
-        'volume_mm3', 'travels', 'retracts']
+        'volume_mm3', 'travels', 'retracts', 'trips']
 
 
 def row(name, slicer, js, gcode):
+    layers, travels, retracts, fed, vol, _, _, trips = counts(gcode)
+    if js == '-':
+        print('\t'.join([name, slicer, '-', str(layers)] + ['-'] * 5 +
+                         [f'{vol:.0f}', str(travels), str(retracts), str(trips)]))
+        return
     s = json.load(open(js))['summary']
-    layers, travels, retracts, fed, vol, _, _ = counts(gcode)
     L = json.load(open(js))['layers']
     skin_a = sum(l['skin_area'] for l in L if l.get('skin_coverage') is not None)
     skin_c = sum(l['skin_area'] * l['skin_coverage'] for l in L if l.get('skin_coverage') is not None)
@@ -27,13 +32,13 @@ def row(name, slicer, js, gcode):
     verdict = s.get('verdict', '?')
     vals = [name, slicer, verdict.split(':')[0], str(layers), f"{s.get('band_coverage_mean', 0):.3f}",
             f"{s.get('band_coverage_p05', 0):.3f}", f'{skin:.3f}', f"{s.get('overflow_max', 0):.4f}",
-            f"{s.get('overlap_ratio_median', 0):.3f}", f'{vol:.0f}', str(travels), str(retracts)]
+            f"{s.get('overlap_ratio_median', 0):.3f}", f'{vol:.0f}', str(travels), str(retracts), str(trips)]
     print('\t'.join(vals))
 
 
 def table(path):
     rows = [l.rstrip('\n').split('\t') for l in open(path) if l.strip()]
-    widths = [14, 8, 8, 6, 6, 8, 6, 8, 7, 10, 8, 8]
+    widths = [14, 12, 8, 6, 6, 8, 6, 8, 7, 10, 8, 8, 6]
     print(' '.join(c.ljust(w) for c, w in zip(COLS + ['vol/prusa'], widths + [9])))
     by = {}
     for r in rows:
@@ -41,25 +46,32 @@ def table(path):
     for model, sl in by.items():
         for s, r in sl.items():
             if len(r) < len(COLS):
-                print(f'{model:<14} {s:<8} {" ".join(r[2:])}')
+                print(f'{model:<14} {s:<12} {" ".join(r[2:])}')
                 continue
             ref = sl.get('prusa')
             rel = f'{float(r[9]) / float(ref[9]):.3f}' if ref and len(ref) >= len(COLS) and float(ref[9]) > 0 else '-'
             print(' '.join(c.ljust(w) for c, w in zip(r + [rel], widths + [9])))
     print()
-    print('tranche / peer (travel moves, retractions), per model and over all models both sliced:')
-    for peer in ('prusa', 'cura'):
-        tt = tp = rt = rp = 0
-        parts = []
-        for model, sl in by.items():
-            a, b = sl.get('tranche'), sl.get(peer)
-            if not a or not b or len(a) < len(COLS) or len(b) < len(COLS):
-                continue
-            ta, tb, ra, rb = int(a[10]), int(b[10]), int(a[11]), int(b[11])
-            tt, tp, rt, rp = tt + ta, tp + tb, rt + ra, rp + rb
-            parts.append(f'{model} {ta / max(tb, 1):.2f}/{ra / max(rb, 1):.2f}')
-        if tp:
-            print(f'  vs {peer}: travels {tt / tp:.2f}, retractions {rt / max(rp, 1):.2f}   ({", ".join(parts)})')
+    print('tranche / peer: travel moves, trips (runs of travel moves), retractions; per model, then over')
+    print('all models both sliced. tranche_comb = tranche with retract_long_travel=10000, i.e. CuraEngine\'s')
+    print('combing policy (retract only when leaving the part, whatever the travel\'s length):')
+    for ours in ('tranche', 'tranche_comb'):
+        for peer in ('prusa', 'cura'):
+            tot = [0, 0, 0, 0, 0, 0]
+            parts = []
+            for model, sl in by.items():
+                a, b = sl.get(ours), sl.get(peer)
+                if not a or not b or len(a) < len(COLS) or len(b) < len(COLS):
+                    continue
+                va = [int(a[10]), int(a[12]), int(a[11])]
+                vb = [int(b[10]), int(b[12]), int(b[11])]
+                for k in range(3):
+                    tot[k] += va[k]
+                    tot[k + 3] += vb[k]
+                parts.append(f'{model} {"/".join(f"{x / max(y, 1):.2f}" for x, y in zip(va, vb))}')
+            if tot[3]:
+                print(f'  {ours} vs {peer}: travels {tot[0] / tot[3]:.2f}, trips {tot[1] / max(tot[4], 1):.2f}, '
+                      f'retractions {tot[2] / max(tot[5], 1):.2f}   ({", ".join(parts)})')
 
 
 def offset(stl, centre):

@@ -78,11 +78,15 @@ cura_defs() {
   mapfile -d '' -t CURA_ARGS <"$d/args"
 }
 
-# After `peer_cmd SLICER MODEL OUT`, CMD holds the command line (SLICER: tranche, prusa, cura).
+# After `peer_cmd SLICER MODEL OUT`, CMD holds the command line (SLICER: tranche, tranche_comb,
+# prusa, cura).
 peer_cmd() {
   local slicer=$1 model=$2 out=$3
   case $slicer in
     tranche) CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}") ;;
+    # CuraEngine's combing policy (no distance limit): retract only when a travel leaves the part.
+    tranche_comb)
+      CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}" --set retract_long_travel=10000) ;;
     prusa) CMD=(prusa-slicer --export-gcode --load "$PEERS_DIR/prusaslicer.ini" --center 100,100 -o "$out" "$model") ;;
     cura)
       [[ -n ${CURA_DEFS:-} ]] || cura_defs || { echo "bench: cannot get Cura's definitions (apt-get download cura)" >&2; return 1; }
