@@ -51,6 +51,13 @@ constexpr const char* kUsage =
     "  --no-debug             (build) leave out the debug section (file:line:col of the code)\n"
     "  --at FIELD=VALUE,...   (explain) the context: fields (`island.area=3mm2`), and properties as\n"
     "                         the lower layers of the cascade give them (`speed=60`)\n"
+    "  --slot NAME            (explain) show only this slot (`speed`, `before path`); repeatable\n"
+    "  --printer NAME, --material NAME\n"
+    "                         put the profile tranche slice uses below the files (stdlib/defaults.rules,\n"
+    "                         the printer, the material); explain does so by default\n"
+    "                         (generic-marlin, pla); `none` leaves one out\n"
+    "  --profile, --no-profile\n"
+    "                         with or without that profile (explain: with; the others: without)\n"
     "  --dump-ast             (check) print the checked AST\n"
     "  --time                 print the time of each phase on stderr\n"
     "  -h, --help             this text\n"
@@ -69,7 +76,9 @@ struct Args {
   std::vector<std::string> files;
   std::vector<std::pair<std::string, std::string>> sets;
   std::string format = "text", color = "auto", output, at;
-  bool dump = false, timing = false, debug = true, has_at = false;
+  std::string printer = "generic-marlin", material = "pla";
+  std::vector<std::string> slots;
+  bool dump = false, timing = false, debug = true, has_at = false, profile = false;
 };
 
 // Parses the options shared by every command; returns an exit code for usage errors.
@@ -123,6 +132,19 @@ int parse(int argc, char** argv, Args& a) {
       if (!v) return usage_error("--at needs a context, e.g. --at \"layer.index=3, path.kind=infill\"");
       a.at = v;
       a.has_at = true;
+    } else if (s == "--printer" || s == "--material") {
+      const char* v = value();
+      if (!v || !*v) return usage_error(std::string(s) + " needs a name or a file");
+      (s == "--printer" ? a.printer : a.material) = v;
+      a.profile = true;
+    } else if (s == "--slot") {
+      const char* v = value();
+      if (!v || !*v) return usage_error("--slot needs a property, a hook or a replacement, e.g. --slot speed");
+      a.slots.emplace_back(v);
+    } else if (s == "--profile") {
+      a.profile = true;
+    } else if (s == "--no-profile") {
+      a.profile = false;
     } else if (s == "--dump-ast") {
       a.dump = true;
     } else if (s == "--time") {
@@ -161,6 +183,10 @@ bool front(const Args& a, Front& f) {
     f.times.emplace_back(phase, std::chrono::duration<double, std::milli>(t - t0).count());
     t0 = t;
   };
+  // The profile first, as `tranche slice` loads it (explain does by default; the others on request).
+  if (a.profile)
+    compiler::load_source(f.program, compiler::kProfileName, compiler::profile_source(a.printer, a.material),
+                          a.options, f.sink);
   for (const auto& file : a.files) compiler::load_file(f.program, file, a.options, f.sink);
   for (const auto& [k, v] : a.sets) compiler::add_set(f.program, k, v, f.sink);
   lap("read and parse");
@@ -297,7 +323,7 @@ int explain(const Args& a) {
     std::fprintf(stderr, "rulec: error: %s\n", rs.error().to_string().c_str());
     return 1;
   }
-  auto text = compiler::explain(f.program, **rs, a.at);
+  auto text = compiler::explain(f.program, **rs, a.at, a.slots);
   if (!text) {
     std::fprintf(stderr, "rulec: error: %s\n", text.error().to_string().c_str());
     return 1;
@@ -318,6 +344,7 @@ int main(int argc, char** argv) {
   if (cmd != "check" && cmd != "build" && cmd != "disasm" && cmd != "explain")
     return usage_error(std::string("unknown command `").append(cmd).append("`"));
   Args a;
+  a.profile = cmd == "explain";  // explain shows what tranche slice does: with the profile
   if (int rc = parse(argc, argv, a); rc >= 0) return rc;
   if (cmd == "check") return check(a);
   if (cmd == "build") return build(a);

@@ -47,7 +47,18 @@ std::string show_prop(PropId p, double v) {
 
 }  // namespace
 
-Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, const std::string& at) {
+Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, const std::string& at,
+                            const std::vector<std::string>& only) {
+  for (const auto& name : only) {
+    bool known = schema::find_property(name).has_value();
+    for (const char* w : {"before ", "after ", "replace "})
+      if (name.starts_with(w)) known = true;
+    if (!known) return Error{"--slot", fmt::format("`{}` is not a slot: give a property (`speed`), a hook "
+                                                   "(`before path`) or a replacement (`replace island`)", name)};
+  }
+  auto shown = [&](const std::string& slot) {
+    return only.empty() || std::find(only.begin(), only.end(), slot) != only.end();
+  };
   const vm::Program& p = rs.program();
   ctx::Context c;
   std::vector<std::pair<PropId, double>> given_props;
@@ -108,7 +119,8 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
                                          ? program.sources.file(r->span.file).path +
                                                (program.sources.file(r->span.file).user ? "" : " (stdlib)")
                                          : std::string("?");
-    out += i == j ? fmt::format("  rule {:<9} {}\n", i, what) : fmt::format("  rules {}-{:<5} {}\n", i, j, what);
+    std::string which = i == j ? fmt::format("rule {}", i) : fmt::format("rules {}-{}", i, j);
+    out += fmt::format("  {:<14} {}\n", which, what);
     i = j + 1;
   }
   out += "context:";
@@ -156,8 +168,9 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
     }
     return std::string("its filter holds");  // not reached for a non-matching rule
   };
-  auto slot = [&](const std::string& title, const vm::Candidates& cands, bool hook) -> Status {
-    if (cands.empty()) return ok_status();
+  auto slot = [&](const std::string& name, const std::string& title, const vm::Candidates& cands,
+                  bool hook) -> Status {
+    if (cands.empty() || !shown(name)) return ok_status();
     // The deciding candidate: the first (last written) match; for hooks, the first match that
     // is not `append` (matching `append` ones before it add to it).
     int decider = -1;
@@ -200,16 +213,21 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   for (auto q : p.property_order) {
     const auto& cands = p.props[static_cast<size_t>(q)];
     if (cands.empty()) continue;
-    if (Status s = slot(fmt::format("{} = {}", schema::property(q).name, show_prop(q, props[q])), cands, false); !s)
+    if (Status s = slot(std::string(schema::property(q).name),
+                        fmt::format("{} = {}", schema::property(q).name, show_prop(q, props[q])), cands, false);
+        !s)
       return s.error();
   }
   for (int l = 0; l < schema::kLevelCount; ++l) {
     auto level = static_cast<schema::Level>(l);
     auto name = schema::level_name(level);
-    for (int w = 0; w < 2; ++w)
-      if (Status s = slot(fmt::format("{} {}", w == 0 ? "before" : "after", name), p.hooks[static_cast<size_t>(l)][static_cast<size_t>(w)], true); !s)
+    for (int w = 0; w < 2; ++w) {
+      std::string hook = fmt::format("{} {}", w == 0 ? "before" : "after", name);
+      if (Status s = slot(hook, hook, p.hooks[static_cast<size_t>(l)][static_cast<size_t>(w)], true); !s)
         return s.error();
-    if (Status s = slot(fmt::format("replace {}", name), p.replace[static_cast<size_t>(l)], true); !s) return s.error();
+    }
+    std::string rep = fmt::format("replace {}", name);
+    if (Status s = slot(rep, rep, p.replace[static_cast<size_t>(l)], true); !s) return s.error();
   }
   return out;
 }

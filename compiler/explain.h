@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "compiler/ast/ast.h"
 #include "runtime/base/result.h"
@@ -15,6 +16,8 @@ namespace tranche::compiler {
 // list of `field=value` (a number with the field's unit, an enum value, true/false) and
 // `property=value` (a value below the rules, as the lower layers of the cascade would give it).
 // Errors: an unknown name or a bad value in `at`, a run-time error of the rules.
-Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rules, const std::string& at);
+// `only`: the slots to show (`speed`, `before path`, `replace island`); empty: every slot the rules set.
+Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rules, const std::string& at,
+                            const std::vector<std::string>& only = {});
 
 }  // namespace tranche::compiler

@@ -261,4 +261,17 @@ ast::Program compile(const std::vector<std::string>& paths,
   return program;
 }
 
+std::string profile_source(const std::string& printer, const std::string& material) {
+  auto target = [](const std::string& kind, const std::string& name) {
+    bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
+    if (!path) return kind + "/" + name;
+    std::error_code ec;
+    return std::filesystem::absolute(name, ec).string();
+  };
+  std::string s = "use \"defaults\"\n";
+  if (!printer.empty() && printer != "none") s += "use \"" + target("printers", printer) + "\"\n";
+  if (!material.empty() && material != "none") s += "use \"" + target("materials", material) + "\"\n";
+  return s;
+}
+
 }  // namespace tranche::compiler

@@ -54,6 +54,12 @@ bool load_source(ast::Program& program, const std::string& path, std::string tex
 // as an error (E0500) rather than a warning. Returns false if it reported an error.
 bool add_set(ast::Program& program, std::string_view key, std::string_view value, diag::Sink& sink);
 
+// The profile `tranche slice` puts below the user's rules, as a source of `use` lines:
+// `use "defaults"`, then the printer and the material (stdlib names such as `generic-marlin`,
+// or paths to .rules files; empty or "none" for neither). Load it first with load_source.
+std::string profile_source(const std::string& printer, const std::string& material);
+inline constexpr const char* kProfileName = "--printer/--material profile";
+
 // Everything `rulec check` does: load each file, add the `--set`s, check, lint.
 ast::Program compile(const std::vector<std::string>& paths,
                      const std::vector<std::pair<std::string, std::string>>& sets,

@@ -28,22 +28,6 @@ std::optional<std::string> read_all(const std::string& path) {
   return ss.str();
 }
 
-// A `use` target for --printer/--material: a stdlib name, or a path to a file.
-std::string use_target(const std::string& kind, const std::string& name) {
-  bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
-  if (!path) return kind + "/" + name;
-  std::error_code ec;
-  return std::filesystem::absolute(name, ec).string();
-}
-
-// The profile as a tiny source of `use` lines, compiled first.
-std::string profile_source(const RulesInput& in) {
-  std::string s = "use \"defaults\"\n";
-  if (!in.printer.empty() && in.printer != "none") s += "use \"" + use_target("printers", in.printer) + "\"\n";
-  if (!in.material.empty() && in.material != "none") s += "use \"" + use_target("materials", in.material) + "\"\n";
-  return s;
-}
-
 // Compiles `.rules` files (and --set expressions) as one program; `profile` first when set.
 Result<vm::Program> compile(const std::string* profile, const std::vector<std::string>& files,
                             const std::vector<std::pair<std::string, std::string>>& sets,
@@ -52,7 +36,7 @@ Result<vm::Program> compile(const std::string* profile, const std::vector<std::s
   options.stdlib_dir = stdlib_dir;
   diag::Sink sink;
   ast::Program program;
-  if (profile) compiler::load_source(program, "--printer/--material profile", *profile, options, sink);
+  if (profile) compiler::load_source(program, compiler::kProfileName, *profile, options, sink);
   for (const auto& f : files) compiler::load_file(program, f, options, sink);
   for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
   if (compiler::check(program, sink) && !sink.has_errors()) compiler::lint(program, sink);
@@ -118,7 +102,7 @@ Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Repo
   std::vector<vm::Program> programs;
   std::vector<std::string> names;
   std::vector<std::string> pending;  // consecutive .rules files
-  const std::string profile = in.profile ? profile_source(in) : std::string();
+  const std::string profile = in.profile ? compiler::profile_source(in.printer, in.material) : std::string();
   bool profile_done = !in.profile;
   auto flush = [&](bool with_sets) -> Status {
     if (pending.empty() && !with_sets && profile_done) return ok_status();

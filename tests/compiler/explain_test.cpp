@@ -29,7 +29,7 @@ rule "PA outer wall" when path.kind == outer_perimeter { before path { gcode "M9
 rule "more" when path.kind == outer_perimeter { before path append { gcode "M117 x" } }
 )";
   std::string out = explain(rules, "layer.index=3, path.kind=outer_perimeter, island.area=2mm2");
-  CHECK(out.find("rules 0-4     test.rules") != std::string::npos);
+  CHECK(out.find("  rules 0-4      test.rules\n") != std::string::npos);
   CHECK(out.find("speed = 60 mm/s\n  decided by rule \"base\" at test.rules:1:1") != std::string::npos);
   CHECK(out.find("rule \"small islands\" at test.rules:3:1: `path.kind == infill` is false (path.kind = "
                  "outer_perimeter)") != std::string::npos);
@@ -60,4 +60,24 @@ TEST_CASE("explain: bad contexts are refused with a suggestion") {
   REQUIRE_FALSE(kind.ok());
   CHECK(kind.error().message.find("outer_perimeter") != std::string::npos);
   CHECK(compiler::explain(c.program, **rs, "speed=40, cell.solid=true").ok());
+}
+
+TEST_CASE("explain: --slot shows only the slots asked for, and refuses names that are none") {
+  const std::string rules = "rule \"a\" { speed = 10 mm/s; flow = 1.0 }\nrule { before layer { gcode \"X\" } }\n";
+  std::string all = explain(rules, "layer.index=1");
+  CHECK(all.find("\nflow = ") != std::string::npos);
+  test::Compiled c;
+  test::compile_text(c, rules, false);
+  auto p = compiler::generate(c.program);
+  REQUIRE(p.ok());
+  auto rs = vm::RuleSet::create(std::move(*p));
+  REQUIRE(rs.ok());
+  auto only = compiler::explain(c.program, **rs, "layer.index=1", {"speed", "before layer"});
+  REQUIRE(only.ok());
+  CHECK(only->find("\nspeed = 10 mm/s") != std::string::npos);
+  CHECK(only->find("\nbefore layer") != std::string::npos);
+  CHECK(only->find("\nflow = ") == std::string::npos);
+  auto bad = compiler::explain(c.program, **rs, "", {"sped"});
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().message.find("not a slot") != std::string::npos);
 }
