@@ -92,9 +92,48 @@ std::string short_repr(py::handle o) {
   }
 }
 
+// The ring without vertices that lie on the line through their neighbours to within half a
+// micrometre: a mesh's side triangles leave such vertices in the middle of straight edges
+// (exactly collinear ones are already gone), and scripts look at corners and edges.
+Ring without_straight_vertices(const Ring& ring) {
+  constexpr double kTol = 500;  // units (nm)
+  Ring out;
+  for (const Point& p : ring) {
+    out.push_back(p);
+    while (out.size() >= 3) {
+      const Point &a = out[out.size() - 3], &b = out[out.size() - 2], &c = out.back();
+      double dx = double(c.X - a.X), dy = double(c.Y - a.Y), len = std::hypot(dx, dy);
+      double cross = std::abs(dx * double(b.Y - a.Y) - dy * double(b.X - a.X));
+      bool between = (double(b.X - a.X) * dx + double(b.Y - a.Y) * dy) > 0 &&
+                     (double(c.X - b.X) * dx + double(c.Y - b.Y) * dy) > 0;
+      if (len == 0 || !between || cross > kTol * len) break;
+      out.erase(out.end() - 2);
+    }
+  }
+  // The seam: the first and last vertices against their wrapped neighbours.
+  for (bool changed = true; changed && out.size() > 3;) {
+    changed = false;
+    for (size_t k : {size_t(0), out.size() - 1}) {
+      const Point& a = out[(k + out.size() - 1) % out.size()];
+      const Point& b = out[k];
+      const Point& c = out[(k + 1) % out.size()];
+      double dx = double(c.X - a.X), dy = double(c.Y - a.Y), len = std::hypot(dx, dy);
+      double cross = std::abs(dx * double(b.Y - a.Y) - dy * double(b.X - a.X));
+      bool between = (double(b.X - a.X) * dx + double(b.Y - a.Y) * dy) > 0 &&
+                     (double(c.X - b.X) * dx + double(c.Y - b.Y) * dy) > 0;
+      if (len > 0 && between && cross <= kTol * len) {
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(k));
+        changed = true;
+        break;
+      }
+    }
+  }
+  return out.size() >= 3 ? out : ring;
+}
+
 py::list ring_to_list(const Ring& ring) {
   py::list l;
-  for (const Point& p : ring) l.append(py::make_tuple(to_mm(p.X), to_mm(p.Y)));
+  for (const Point& p : without_straight_vertices(ring)) l.append(py::make_tuple(to_mm(p.X), to_mm(p.Y)));
   return l;
 }
 

@@ -1,6 +1,7 @@
 // The --fill-angle-script hook: loading, calling, the context a script sees, and every error.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -255,4 +256,28 @@ TEST_CASE("fill-angle script: built with Python") {
     for (auto& th : threads) th.join();
     CHECK(bad == std::vector<int>(4, 0));
   }
+}
+
+TEST_CASE("fill-angle script: vertices in the middle of straight edges are left out of ctx.outer") {
+  if (!geo::FillAngleScript::available()) return;
+  // A 30 × 5 mm bar turned 30°, as a mesh slices it: each long edge has an extra vertex (where a
+  // side triangle's diagonal meets it), off the exact line by integer rounding only.
+  const double a = 30 * 3.14159265358979323846 / 180, c = std::cos(a), s = std::sin(a);
+  auto at = [&](double x, double y) { return geo::to_point(x * c - y * s, x * s + y * c); };
+  geo::Polygon bar;
+  bar.outer = {at(0, 0), at(1.5, 0), at(30, 0), at(30, 0.25), at(30, 5), at(28.5, 5), at(0, 5), at(0, 4.75)};
+  geo::Layer layer;
+  layer.index = 0;
+  layer.z_top = 0.2;
+  layer.islands.push_back({bar, geo::area_mm2(bar), std::nan(""), {}});
+  tranche::test::TempDir dir("fill-angle");
+  auto script = geo::FillAngleScript::load(write(dir, "n.py", "def fill_angle(ctx):\n    return len(ctx.outer)\n"));
+  REQUIRE(script.ok());
+  geo::FillAngleContext ctx;
+  ctx.layer_count = 1;
+  ctx.island_count = 1;
+  ctx.shape = &layer.islands[0].shape;
+  auto n = (*script)->angle(ctx);
+  REQUIRE(n.ok());
+  CHECK(*n == 4);
 }
