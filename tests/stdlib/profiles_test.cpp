@@ -29,11 +29,19 @@ bool before_first_layer(const Gcode& g, const std::string& line_start) {
   return false;
 }
 
+// Two separate parts: the travel between them leaves the material, so it retracts (travels
+// inside one part are combed and retract only past retract_long_travel).
+geo::Mesh two_parts() {
+  geo::Mesh m = geo::box({20, 20, 2});
+  geo::append(m, geo::translated(geo::box({20, 20, 2}), {30, 0, 0}));
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE("printers: every printer slices, its start G-code heats to the first layer's temperatures") {
   TempDir dir("printers");
-  auto box = geo::box({20, 20, 2});
+  auto box = two_parts();
   struct Case {
     const char* printer;
     std::vector<const char*> start;  // lines the start G-code must hold, before layer 0
@@ -109,7 +117,7 @@ TEST_CASE("materials: temperatures of the first layer and the next, fan and retr
 
 TEST_CASE("materials: PETG retracts 20% more with a z hop; TPU is slow and retracts little, even on a Bowden printer") {
   TempDir dir("materials-retract");
-  auto box = geo::plate_with_holes(20, 20, 2, 2, 2, 2, 24);
+  auto box = two_parts();
   auto petg = slice_with(dir, "petg", box, Profile().material("petg"));
   CHECK(retractions(petg) == std::set<double>{0.96});
   CHECK(petg.contains("G1 Z0.4"));  // 0.2 mm first layer + 0.2 mm hop
