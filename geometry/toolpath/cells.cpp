@@ -4,6 +4,7 @@
 
 #include "geometry/polygon/decompose.h"
 #include "geometry/polygon/monotone.h"
+#include "geometry/polygon/resolve.h"
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::toolpath {
@@ -75,9 +76,27 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
       add(*cells);
       continue;
     }
-    // Rings touching at a vertex or along an edge: the same polygon, strictly simple.
+    // Rings touching at a vertex or along an edge: the same region as strict islands (the
+    // polygon stage's exact resolution, whose output decompose() takes on every layer), then
+    // Clipper's strictly simple output, then the fallback.
     geo::Rings rings{poly.outer};
     rings.insert(rings.end(), poly.holes.begin(), poly.holes.end());
+    if (auto islands = geo::strict_islands(rings)) {
+      bool all = true;
+      std::vector<std::vector<geo::Cell>> parts;
+      for (const geo::Island& isl : *islands) {
+        auto again = geo::decompose(isl.shape, angle_deg);
+        if (!again) {
+          all = false;
+          break;
+        }
+        parts.push_back(std::move(*again));
+      }
+      if (all) {
+        for (auto& part_cells : parts) add(part_cells);
+        continue;
+      }
+    }
     for (const geo::Polygon& part : polygons(rings, true)) {
       auto again = geo::decompose(part, angle_deg);
       if (again)
