@@ -70,9 +70,16 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
     c.monotone = false;
     out.push_back(std::move(c));
   };
+  auto all_monotone = [&](const std::vector<geo::Cell>& cells) {
+    for (const auto& cell : cells)
+      if (!geo::is_monotone(cell.ring, angle_deg)) return false;
+    return true;
+  };
   for (const geo::Polygon& poly : polygons(region, false)) {
     auto cells = geo::decompose(poly, angle_deg);
-    if (cells) {
+    // A plain union may have rings touching along an edge, which decompose() does not always
+    // refuse: a cell that is not monotone sends it the strict way too.
+    if (cells && all_monotone(*cells)) {
       add(*cells);
       continue;
     }
@@ -86,7 +93,7 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
       std::vector<std::vector<geo::Cell>> parts;
       for (const geo::Island& isl : *islands) {
         auto again = geo::decompose(isl.shape, angle_deg);
-        if (!again) {
+        if (!again || !all_monotone(*again)) {
           all = false;
           break;
         }
