@@ -100,6 +100,7 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
   for (const auto& a : e.args) {
     e.stage = std::max(e.stage, a->stage);
     e.level = std::max(e.level, a->level);
+    e.from_param = e.from_param || a->from_param;
   }
   if (!t.is_error()) fold(e);
   return e.type;

@@ -124,6 +124,11 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     return l->type;
   }
   if (auto p = schema::find_property(n)) return property_ref(e, *p);
+  if (auto it = params_.find(n); it != params_.end()) {
+    e.constant = it->second.value;
+    e.from_param = true;
+    return it->second.type;
+  }
   for (const auto& info : schema::enums()) {
     if (info.id == schema::EnumType::None || !schema::find_enum_value(info.id, n)) continue;
     if (hint != schema::EnumType::None) {
@@ -165,6 +170,7 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
   }
   std::vector<std::string> candidates = property_names();
   for (const auto& f : schema::fields()) candidates.emplace_back(f.name);
+  for (const auto& [name, value] : params_) candidates.push_back(name);
   if (ctx.locals)
     for (const auto& l : *ctx.locals) candidates.push_back(l.name);
   auto& d = sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n),

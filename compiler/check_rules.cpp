@@ -70,6 +70,7 @@ bool check(ast::Program& program, diag::Sink& sink) {
 
 bool Checker::run() {
   size_t errors_before = sink_.errors();
+  params();
   int index = 0;
   for (ast::Rule* r : program_.cascade) {
     r->index = index++;
@@ -80,6 +81,70 @@ bool Checker::run() {
   dependencies();
   program_.checked = sink_.errors() == errors_before;
   return program_.checked;
+}
+
+void Checker::params() {
+  params_.clear();
+  for (ast::Param* p : program_.params) {
+    // A name that would hide something else, or that `--set` could not tell from a property.
+    std::string clash;
+    if (schema::find_property(p->name)) clash = "is a property: set it in a rule, or with `--set`";
+    else if (level_named(p->name) || p->name == "below" || p->name == "above" || p->name == "layers")
+      clash = "names a level";
+    for (const auto& e : schema::enums())
+      if (clash.empty() && e.id != schema::EnumType::None && schema::find_enum_value(e.id, p->name))
+        clash = fmt::format("is a `{}` value", e.name);
+    if (!clash.empty()) {
+      sink_.error("E0110", p->name_span, fmt::format("`{}` cannot be a param: it {}", p->name, clash),
+                  "choose another name");
+      continue;
+    }
+    auto known = params_.find(p->name);
+    // `--set NAME=25`: a plain number takes the param's unit, as for a property.
+    if (p->from_set && known != params_.end() && known->second.type.kind == Kind::Number &&
+        !known->second.type.unit.plain()) {
+      Expr* literal = p->value->kind == ast::ExprKind::Unary && p->value->op == ast::Op::Neg
+                          ? p->value->args[0].get()
+                          : p->value.get();
+      if (literal->kind == ast::ExprKind::Number && literal->unit_text.empty()) {
+        literal->unit_text = known->second.type.unit.name();
+        literal->integer_literal = false;
+      }
+    }
+    ExprContext ctx;
+    ctx.where = ExprContext::Where::Value;
+    Type t = expr(*p->value, ctx);
+    if (t.is_error()) continue;
+    if (!p->value->constant) {
+      sink_
+          .error("E0210", p->value->span, fmt::format("the value of param `{}` is not known before slicing", p->name),
+                 "reads the print")
+          .help("a param is a constant (`param pause_height = 10 mm`); read fields in the rules that use it");
+      continue;
+    }
+    if (t.kind == Kind::Enum) {
+      sink_.error("E0210", p->value->span, "a param is a number, an integer or a boolean", "an enum value")
+          .help("compare in the rule instead: `param rear_seam = true` ... `seam = if rear_seam then rear else aligned`");
+      continue;
+    }
+    p->type = t;
+    p->constant = p->value->constant;
+    if (known != params_.end()) {
+      const Type& was = known->second.type;
+      if (!(was == t)) {
+        sink_
+            .error("E0211", p->value->span,
+                   fmt::format("param `{}` is {} here but {} where it was first defined", p->name, t.describe(),
+                               was.describe()),
+                   "another kind of value")
+            .label(known->second.first->value->span, "first defined here");
+        continue;
+      }
+      known->second.value = *p->constant;
+    } else {
+      params_[p->name] = ParamValue{t, *p->constant, p};
+    }
+  }
 }
 
 void Checker::rule(ast::Rule& r) {
@@ -345,7 +410,7 @@ void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int n
         sink_.error("E0201", s.value->span,
                     fmt::format("the condition of `if` must be true or false, found {}", t.describe()),
                     "not true or false");
-      } else if (s.value->constant && user_file(sources_, s.span)) {
+      } else if (s.value->constant && !s.value->from_param && user_file(sources_, s.span)) {
         sink_
             .warning("W203", s.value->span,
                      fmt::format("this condition is always {}", *s.value->constant != 0 ? "true" : "false"),
@@ -569,6 +634,10 @@ bool Checker::declare(std::vector<Local>& locals, Local local, Stmt& action) {
   }
   if (schema::find_property(local.name)) {
     clash("is a property");
+    return false;
+  }
+  if (params_.count(local.name)) {
+    clash("is a param");
     return false;
   }
   if (level_named(local.name) || local.name == "below" || local.name == "above" || local.name == "layers") {

@@ -102,6 +102,16 @@ class Checker {
   void dependencies();
   Limit limit_for(const ast::Slot& slot, const ast::Rule& r) const;
 
+  // Params (`param NAME = VALUE`): the value so far while the params are checked in cascade
+  // order, then the final one (the last definition) while the rules are.
+  struct ParamValue {
+    ast::Type type;
+    double value = 0;
+    const ast::Param* first = nullptr;
+  };
+  void params();
+  std::map<std::string, ParamValue> params_;
+
   ast::Program& program_;
   const ast::SourceMap& sources_;
   diag::Sink& sink_;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "compiler/names.h"
@@ -129,6 +130,24 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   for (auto [q, v] : given_props) out += fmt::format(" {} = {} (below the rules);", schema::property(q).name, show_prop(q, v));
   if (out.back() == ';') out.pop_back();
   out += "\n";
+  // Params: their final values, and where they were last set.
+  std::map<std::string, const ast::Param*> last;
+  for (const ast::Param* prm : program.params)
+    if (prm->constant) last[prm->name] = prm;
+  if (!last.empty()) {
+    out += "params:";
+    for (const auto& [name, prm] : last) {
+      std::string value = prm->type.kind == ast::Kind::Bool ? (*prm->constant != 0 ? "true" : "false")
+                          : prm->type.kind == ast::Kind::Number && !prm->type.unit.plain()
+                              ? fmt::format("{:g} {}", *prm->constant, prm->type.unit.name())
+                              : fmt::format("{:g}", *prm->constant);
+      std::string from = prm->from_set ? std::string("--set")
+                                       : fmt::format("{}:{}", program.sources.file(prm->span.file).path, prm->span.line);
+      out += fmt::format(" {} = {} ({});", name, value, from);
+    }
+    out.pop_back();
+    out += "\n";
+  }
   std::vector<std::string> missing;
   for (const auto& f : schema::fields())
     if (rs.reads(f.id) && !given.count(f.id)) missing.emplace_back(f.name);

@@ -66,6 +66,10 @@ class Loader {
         program_.cascade.push_back(item.rule.get());
         continue;
       }
+      if (item.param) {
+        program_.params.push_back(item.param.get());
+        continue;
+      }
       ast::Use& use = *item.use;
       auto target = resolve(use, file);
       if (!target) continue;
@@ -209,11 +213,16 @@ bool add_set(ast::Program& program, std::string_view key, std::string_view value
   uint32_t key_end = static_cast<uint32_t>(key.size());
   ast::Span key_span = program.sources.span(id, 0, key_end);
   auto prop = schema::find_property(key);
-  if (!prop) {
+  bool param = false;
+  for (const ast::Param* p : program.params) param = param || p->name == key;
+  if (!prop && !param) {
     std::vector<std::string> names;
     for (const auto& p : schema::properties()) names.emplace_back(p.name);
-    auto& d =
-        sink.error("E0103", key_span, fmt::format("unknown property `{}` in `--set`", key), "not a property");
+    for (const ast::Param* p : program.params) names.push_back(p->name);
+    bool any_params = !program.params.empty();
+    auto& d = sink.error("E0103", key_span,
+                         fmt::format("unknown property{} `{}` in `--set`", any_params ? " or param" : "", key),
+                         any_params ? "not a property or a param of these rules" : "not a property");
     if (auto best = suggest(key, names)) d.help(fmt::format("did you mean `--set {}={}`?", *best, value));
     return false;
   }
@@ -226,6 +235,17 @@ bool add_set(ast::Program& program, std::string_view key, std::string_view value
   ast::ExprPtr v =
       grammar::parse_expression(program.sources, id, key_end + 1, static_cast<uint32_t>(text.size()), sink);
   if (!v) return false;
+  if (!prop) {  // a param: an implicit last definition (a plain number takes its unit, see check)
+    auto def = std::make_unique<ast::Param>();
+    def->from_set = true;
+    def->span = program.sources.span(id, 0, static_cast<uint32_t>(text.size()));
+    def->name = std::string(key);
+    def->name_span = key_span;
+    def->value = std::move(v);
+    program.params.push_back(def.get());
+    program.set_params.push_back(std::move(def));
+    return true;
+  }
   const auto& info = schema::property(*prop);
   ast::Expr* literal = v->kind == ast::ExprKind::Unary && v->op == ast::Op::Neg ? v->args[0].get() : v.get();
   if (literal->kind == ast::ExprKind::Number && literal->unit_text.empty() &&

@@ -189,6 +189,7 @@ void lint(const ast::Program& program, diag::Sink& sink) {
     ranges(r, sink);
 
     if (r.filter && !r.filter->type.is_error()) {
+      if (r.filter->constant && r.filter->from_param) continue;  // a param switches it on or off: on purpose
       if (r.filter->constant) {
         bool always = *r.filter->constant != 0;
         sink.warning("W203", r.filter->span,

@@ -16,6 +16,7 @@ item
   : USE STRING                                                     # useItem
   | RULE STRING? (WHEN expr)? block                                # ruleItem
   | ON name DOT name (WHEN expr)? APPEND? block                    # onItem
+  | PARAM name ASSIGN expr                                         # paramItem
   ;
 
 block : LBRACE sep* (stmt (sep+ stmt)* sep*)? RBRACE ;
@@ -73,6 +74,7 @@ name : IDENT ;
 sep : NL | SEMI ;
 
 USE : 'use' ;
+PARAM : 'param' ;
 RULE : 'rule' ;
 WHEN : 'when' ;
 ON : 'on' ;

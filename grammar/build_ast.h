@@ -50,6 +50,7 @@ class AstBuilder : public RulesBaseVisitor {
   ast::RulePtr rule(RulesParser::RuleItemContext* ctx);
   ast::RulePtr on(RulesParser::OnItemContext* ctx);
   std::unique_ptr<ast::Use> use(RulesParser::UseItemContext* ctx);
+  ast::ParamPtr param(RulesParser::ParamItemContext* ctx);
   bool block(RulesParser::BlockContext* ctx, std::vector<ast::StmtPtr>& out);
   ast::StmtPtr stmt(RulesParser::StmtContext* ctx);
   ast::StmtPtr if_stmt(RulesParser::IfStmtContext* ctx);

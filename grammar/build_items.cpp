@@ -22,8 +22,10 @@ ast::File AstBuilder::file(RulesParser::FileContext* ctx) {
       out.rule = rule(r);
     } else if (auto* o = dynamic_cast<RulesParser::OnItemContext*>(item)) {
       out.rule = on(o);
+    } else if (auto* p = dynamic_cast<RulesParser::ParamItemContext*>(item)) {
+      out.param = param(p);
     }
-    if (out.use || out.rule) f.items.push_back(std::move(out));
+    if (out.use || out.rule || out.param) f.items.push_back(std::move(out));
   }
   return f;
 }
@@ -34,6 +36,16 @@ std::unique_ptr<ast::Use> AstBuilder::use(RulesParser::UseItemContext* ctx) {
   u->target = string_value(ctx->STRING()->getSymbol());
   u->target_span = in_.span(ctx->STRING()->getSymbol());
   return u;
+}
+
+ast::ParamPtr AstBuilder::param(RulesParser::ParamItemContext* ctx) {
+  auto p = std::make_unique<ast::Param>();
+  p->span = in_.span(ctx);
+  p->name = ctx->name()->getText();
+  p->name_span = in_.span(ctx->name());
+  p->value = expr(ctx->expr());
+  if (!p->value) return nullptr;
+  return p;
 }
 
 ast::RulePtr AstBuilder::rule(RulesParser::RuleItemContext* ctx) {

@@ -40,6 +40,7 @@ bool continues_after(size_t t) {
     case L::IF:
     case L::WHEN:
     case L::USE:
+    case L::PARAM:
     case L::RULE:
     case L::ON:
     case L::BEFORE:
@@ -66,6 +67,7 @@ bool starts_statement(size_t t) {
   switch (t) {
     case L::IDENT:
     case L::USE:
+    case L::PARAM:
     case L::RULE:
     case L::ON:
     case L::BEFORE:

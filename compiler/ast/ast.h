@@ -103,6 +103,7 @@ struct Expr {
   schema::Stage stage = schema::Stage::Print;
   schema::Level level = schema::Level::Print;
   std::optional<double> constant;
+  bool from_param = false;  // reads a param: constant, but on purpose (no constant-condition lints)
 };
 using ExprPtr = std::unique_ptr<Expr>;
 
@@ -212,6 +213,20 @@ struct Rule {
 };
 using RulePtr = std::unique_ptr<Rule>;
 
+// `param NAME = VALUE`: a named constant every rule of the program can read. Definitions later
+// in the cascade (and `--set NAME=VALUE`, the last) override earlier ones, like rules do.
+struct Param {
+  Span span;  // the whole item
+  std::string name;
+  Span name_span;
+  ExprPtr value;
+  bool from_set = false;
+  // Checked.
+  Type type;
+  std::optional<double> constant;  // its value (every param is a constant)
+};
+using ParamPtr = std::unique_ptr<Param>;
+
 struct Use {
   Span span;
   std::string target;  // as written
@@ -220,8 +235,9 @@ struct Use {
 };
 
 struct Item {
-  std::unique_ptr<Use> use;  // exactly one of use/rule
+  std::unique_ptr<Use> use;  // exactly one of use/rule/param
   RulePtr rule;
+  ParamPtr param;
 };
 
 struct File {
@@ -233,7 +249,9 @@ struct Program {
   SourceMap sources;
   std::vector<File> files;
   std::vector<RulePtr> set_rules;  // `--set` rules, owned here
+  std::vector<ParamPtr> set_params;  // `--set` of a param, owned here
   std::vector<Rule*> cascade;
+  std::vector<Param*> params;  // every param definition in cascade order (`--set` ones last)
   // Every property, by stage, each after the same-stage properties its modifiers read
   // (`flow = width / 0.45 mm` puts `width` first): the order codegen decides them in.
   std::vector<schema::PropId> property_order;

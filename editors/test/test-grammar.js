@@ -65,7 +65,7 @@ function sources() {
   return out;
 }
 
-const RESERVED = ('use rule when on append before after replace gcode comment let if then else for in move to ' +
+const RESERVED = ('use param rule when on append before after replace gcode comment let if then else for in move to ' +
   'travel extrude with default offset reverse and or not mod true false').split(' ');
 
 // Character ranges of strings and comments, found without the grammar (for the independent checks).

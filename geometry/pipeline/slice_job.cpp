@@ -213,9 +213,10 @@ Result<geo::LayerPlanParams> layer_heights(const ctx::Cascade& cascade, const ct
 Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty())
     return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE and/or --export-layers FILE"};
-  // The user's rules and --set: compiled and checked before any work. A --set whose value is a
+  // The user's rules and --set: compiled and checked before any work. A --set of a property to a
   // plain value (`0.2`, `20%`, `rear`) is an override; one with an expression
-  // (`--set fill_angle="15 deg * layer.index"`) is compiled as an implicit last rule.
+  // (`--set fill_angle="15 deg * layer.index"`) is compiled as an implicit last rule, and one of
+  // a `param` as its last definition.
   std::vector<std::pair<std::string, std::string>> plain;
   RulesInput rules_in;
   rules_in.profile = options.profile;
@@ -223,8 +224,10 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   rules_in.material = options.material;
   rules_in.stdlib_dir = options.stdlib_dir;
   rules_in.files = options.rules;
+  // A key that is not a property may be a `param` of the rules: the compiler knows (and says
+  // "did you mean" when it is neither).
   for (const auto& [k, v] : options.sets) {
-    if (!ctx::parse_override(k, v) && schema::find_property(k))
+    if (!schema::find_property(k) || !ctx::parse_override(k, v))
       rules_in.expressions.emplace_back(k, v);
     else
       plain.emplace_back(k, v);

@@ -379,3 +379,27 @@ rule "walls backwards" when path.kind == outer_perimeter {
   const auto* before_last = outer[outer.size() - 2];
   CHECK(moved.contains(fmt::format("; second point {:.3f} {:.3f}", before_last->x, before_last->y)));
 }
+
+SCENARIO("rules: a param is changed with --set, without editing the file") {
+  test::TempDir dir("rules-param");
+  const std::string rules = R"(
+param pause_height = 1 mm
+rule "pause" when layer.z_bottom >= pause_height and below.z_bottom < pause_height {
+  before layer { gcode "M601 ; pause at {pause_height:.1} mm" }
+}
+)";
+  auto box = geo::box({10, 10, 3});
+  auto at_layer = [](const test::Gcode& g) {
+    int layer = -1, count = 0;
+    for (const auto& l : g.lines) {
+      if (l.rfind(";LAYER:", 0) == 0) layer = std::stoi(l.substr(7));
+      if (l.rfind("M601", 0) == 0) ++count;
+      if (l.rfind("M601", 0) == 0 && count == 1) return std::pair<int, std::string>(layer, l);
+    }
+    return std::pair<int, std::string>(count == 0 ? -1 : -2, "");
+  };
+  auto plain = slice(dir, "plain", box, rules);
+  CHECK(at_layer(plain) == std::pair<int, std::string>(5, "M601 ; pause at 1.0 mm"));  // z_bottom 1.0
+  auto moved = slice(dir, "moved", box, rules, {{"pause_height", "2.1"}});            // 2.1 mm
+  CHECK(at_layer(moved) == std::pair<int, std::string>(11, "M601 ; pause at 2.1 mm"));  // z_bottom 2.2
+}

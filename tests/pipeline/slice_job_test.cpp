@@ -83,7 +83,7 @@ SCENARIO("errors the user can act on") {
     o.sets = {{"layer_hieght", "0.1"}};
     auto r = run_slice(o, report);
     REQUIRE(!r.ok());
-    CHECK(r.error().message.find("did you mean layer_height") != std::string::npos);
+    CHECK(r.error().message.find("did you mean `--set layer_height=0.1`?") != std::string::npos);
     CHECK(files_in(dir.path()) == 1);  // nothing written
   }
   GIVEN("no output at all") {
