@@ -198,6 +198,11 @@ TEST_CASE("features/colour-change: M600 once, at the start of layer 10; PAUSE on
   auto pause = lines_starting(k, "PAUSE");
   REQUIRE(pause.size() == 1);
   CHECK(layer_of_line(k, pause[0]) == 10);
+  // The layer is a param: --set moves the change without editing the file.
+  auto moved = slice_with(dir, "moved", box, Profile().feature("colour-change").set("colour_change_layer", "14"));
+  auto at14 = lines_starting(moved, "M600");
+  REQUIRE(at14.size() == 1);
+  CHECK(layer_of_line(moved, at14[0]) == 14);
 }
 
 TEST_CASE("features/pause-at-height: one pause, before the first layer above 5 mm, in each dialect") {
@@ -219,6 +224,13 @@ TEST_CASE("features/pause-at-height: one pause, before the first layer above 5 m
       CHECK(g.layer_z.at(layer - 1) <= 5 + 1e-6);
     }
   }
+  // The height is a param: `--set pause_height=3` (a plain number in the param's unit, mm).
+  auto g = slice_with(dir, "at3", box, Profile().feature("pause-at-height").set("pause_height", "3"));
+  auto at = lines_starting(g, "M0 ");
+  REQUIRE(at.size() == 1);
+  int layer = layer_of_line(g, at[0]);
+  CHECK(g.layer_z.at(layer) > 3);
+  CHECK(g.layer_z.at(layer - 1) <= 3 + 1e-6);
 }
 
 TEST_CASE("features/height-range: 0.1 mm layers and four perimeters between 2 and 4 mm only") {
