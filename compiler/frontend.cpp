@@ -281,10 +281,13 @@ ast::Program compile(const std::vector<std::string>& paths,
   return program;
 }
 
+bool profile_is_path(const std::string& name) {
+  return name.find('/') != std::string::npos || name.ends_with(".rules");
+}
+
 std::string profile_source(const std::string& printer, const std::string& material) {
   auto target = [](const std::string& kind, const std::string& name) {
-    bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
-    if (!path) return kind + "/" + name;
+    if (!profile_is_path(name)) return kind + "/" + name;
     std::error_code ec;
     return std::filesystem::absolute(name, ec).string();
   };

@@ -58,6 +58,8 @@ bool add_set(ast::Program& program, std::string_view key, std::string_view value
 // `use "defaults"`, then the printer and the material (stdlib names such as `generic-marlin`,
 // or paths to .rules files; empty or "none" for neither). Load it first with load_source.
 std::string profile_source(const std::string& printer, const std::string& material);
+// Whether a --printer/--material value is a path to a file rather than a stdlib name.
+bool profile_is_path(const std::string& name);
 inline constexpr const char* kProfileName = "--printer/--material profile";
 
 // Everything `rulec check` does: load each file, add the `--set`s, check, lint.

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -25,12 +26,6 @@ namespace {
 
 using namespace tranche;
 
-uint64_t fnv1a(std::string_view bytes) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 void put(std::string& s, size_t at, uint64_t v, int bytes) {
   for (int i = 0; i < bytes; ++i) s[at + static_cast<size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
 }
@@ -40,7 +35,7 @@ void seal(std::string& b) {
   if (b.size() < 40) return;
   put(b, 16, schema::schema_hash(), 8);
   put(b, 36, b.size(), 4);
-  put(b, 24, fnv1a(std::string_view(b).substr(32)), 8);
+  put(b, 24, vm::bundle_checksum(b), 8);
 }
 
 struct NullSink final : ctx::LineSink {
@@ -121,7 +116,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   run(std::move(*back), data, size);
   // One damaged byte, resealed: the reader and verifier must cope.
   if (bytes.size() > 40 && size > 0) {
-    size_t at = 40 + (fnv1a(in) % (bytes.size() - 40));
+    size_t at = 40 + (std::hash<std::string_view>{}(in) % (bytes.size() - 40));
     bytes[at] = static_cast<char>(bytes[at] ^ (data[size / 2] | 1));
     seal(bytes);
     if (auto q = vm::read_bundle(bytes, "fuzz.bundle")) run(std::move(*q), data, size);

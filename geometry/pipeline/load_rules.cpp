@@ -79,7 +79,7 @@ Status check_profile(const RulesInput& in) {
   for (auto [flag, kind, name] : {std::tuple{"--printer", "printers", in.printer}, std::tuple{"--material", "materials", in.material}}) {
     if (name.empty() || name == "none") continue;
     std::error_code ec;
-    bool path = name.find('/') != std::string::npos || name.ends_with(".rules");
+    bool path = compiler::profile_is_path(name);
     if (path ? fs::is_regular_file(name, ec) : fs::is_regular_file(dir / kind / (name + ".rules"), ec)) continue;
     std::vector<std::string> have;
     for (const auto& e : fs::directory_iterator(dir / kind, ec))

@@ -39,11 +39,12 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
                                   Report& report, const std::string& where) {
   std::vector<CellShape> out;
   if (region.empty()) return out;
-  auto add = [&](std::vector<geo::Cell>& cells) {
+  // `checked`: every cell is known to be monotone (all_monotone ran on them).
+  auto add = [&](std::vector<geo::Cell>& cells, bool checked) {
     for (geo::Cell& cell : cells) {
       CellShape c;
       c.area_mm2 = std::abs(geo::area_mm2(cell.ring));
-      c.monotone = geo::is_monotone(cell.ring, angle_deg);
+      c.monotone = checked || geo::is_monotone(cell.ring, angle_deg);
       if (!c.monotone)
         report.warn("cell-not-monotone", where,
                     "a fill cell is not monotone for the fill angle; its zig-zag is split where needed");
@@ -80,7 +81,7 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
     // A plain union may have rings touching along an edge, which decompose() does not always
     // refuse: a cell that is not monotone sends it the strict way too.
     if (cells && all_monotone(*cells)) {
-      add(*cells);
+      add(*cells, true);
       continue;
     }
     // Rings touching at a vertex or along an edge: the same region as strict islands (the
@@ -100,14 +101,14 @@ std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, co
         parts.push_back(std::move(*again));
       }
       if (all) {
-        for (auto& part_cells : parts) add(part_cells);
+        for (auto& part_cells : parts) add(part_cells, true);
         continue;
       }
     }
     for (const geo::Polygon& part : polygons(rings, true)) {
       auto again = geo::decompose(part, angle_deg);
       if (again)
-        add(*again);
+        add(*again, false);
       else
         fallback(part, again.error().message);
     }

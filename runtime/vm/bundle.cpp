@@ -214,6 +214,8 @@ Candidates read_candidates(Reader& r) {
 
 }  // namespace
 
+uint64_t bundle_checksum(std::string_view bundle) { return bundle.size() < 32 ? 0 : fnv1a(bundle.substr(32)); }
+
 bool looks_like_bundle(std::string_view bytes) {
   return bytes.size() >= sizeof kBundleMagic && std::memcmp(bytes.data(), kBundleMagic, sizeof kBundleMagic) == 0;
 }
@@ -248,7 +250,7 @@ std::string write_bundle(const Program& p, bool with_debug) {
   std::string& s = w.bytes();
   uint32_t size = static_cast<uint32_t>(s.size());
   for (int i = 0; i < 4; ++i) s[36 + i] = static_cast<char>((size >> (8 * i)) & 0xff);
-  uint64_t sum = fnv1a(std::string_view(s).substr(32));
+  uint64_t sum = bundle_checksum(s);
   for (int i = 0; i < 8; ++i) s[24 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
   return std::move(s);
 }
@@ -273,7 +275,7 @@ Result<Program> read_bundle(std::string_view bytes, const std::string& name) {
   if (hash != schema::schema_hash())
     return bad("this bundle was compiled for another version of the context (fields and properties)");
   if (size != bytes.size()) return bad(fmt::format("the bundle should be {} bytes but is {} (truncated?)", size, bytes.size()));
-  if (fnv1a(bytes.substr(32)) != sum) return bad("the bundle's checksum does not match (the file is damaged)");
+  if (bundle_checksum(bytes) != sum) return bad("the bundle's checksum does not match (the file is damaged)");
   if (flags > 1) return bad("unknown flags in the header");
   bool debug = flags & 1;
   if (n != (debug ? kSectionCount : kSectionCount - 1)) return bad("unexpected number of sections");

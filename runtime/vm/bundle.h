@@ -51,4 +51,8 @@ Result<Program> read_bundle(std::string_view bytes, const std::string& name);
 // Whether the bytes start with the bundle magic (to tell a bundle from a .rules file).
 bool looks_like_bundle(std::string_view bytes);
 
+// The checksum a bundle's header holds: FNV-1a 64 of every byte from offset 32 on (tools and
+// tests that build or alter bundles use it to keep them readable).
+uint64_t bundle_checksum(std::string_view bundle);
+
 }  // namespace tranche::vm

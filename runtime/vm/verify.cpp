@@ -291,15 +291,15 @@ std::string operand_text(const Program& p, Operand k, uint16_t v, const Instr& i
   return "?";
 }
 
-std::string loc_text(const Program& p, uint32_t instr) {
+}  // namespace
+
+std::string instruction_location(const Program& p, uint32_t instr) {
   const Debug& d = p.debug;
   if (instr >= d.instr_loc.size() || d.instr_loc[instr] >= d.locs.size()) return {};
   const Loc& l = d.locs[d.instr_loc[instr]];
   if (l.line == 0) return {};
   return fmt::format("{}:{}:{}", l.file < d.files.size() ? d.files[l.file] : "?", l.line, l.col);
 }
-
-}  // namespace
 
 std::string disassemble_chunk(const Program& p, uint32_t ci) {
   std::string out;
@@ -322,7 +322,7 @@ std::string disassemble_chunk(const Program& p, uint32_t ci) {
       line += operand_text(p, kinds[k], ops[k], in);
       first = false;
     }
-    std::string where = loc_text(p, ch.start + i);
+    std::string where = instruction_location(p, ch.start + i);
     if (!where.empty()) {
       if (line.size() < 48) line.resize(48, ' ');
       line += " ; " + where;

@@ -28,4 +28,8 @@ std::string disassemble(const Program& program);
 // One chunk only (tests compare codegen against golden listings).
 std::string disassemble_chunk(const Program& program, uint32_t chunk);
 
+// "file:line:col" of instruction `instr` (an index in Program::code) from the debug section;
+// empty without one, or when the instruction has no position.
+std::string instruction_location(const Program& program, uint32_t instr);
+
 }  // namespace tranche::vm

@@ -549,13 +549,7 @@ Error Machine::error() const {
       break;
     case Fault::Api: what = api_error_ ? api_error_->message : std::string("invalid instruction"); break;
   }
-  std::string where;
-  const Debug& d = p_.debug;
-  uint32_t instr = p_.chunks[fault_chunk_].start + fault_pc_;
-  if (!d.empty() && instr < d.instr_loc.size()) {
-    const Loc& l = d.locs[d.instr_loc[instr]];
-    if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
-  }
+  std::string where = instruction_location(p_, p_.chunks[fault_chunk_].start + fault_pc_);
   std::string rule = rule_ != UINT32_MAX ? rs_.rule_name(rule_) : std::string("a rule");
   if (where.empty() && rule_ != UINT32_MAX) where = rs_.rule_where(rule_);
   std::string help;
@@ -755,13 +749,8 @@ Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& 
     auto checked = check_value(q, v);
     if (!checked) {
       const Candidate& cand = program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)];
-      std::string where = rule_where(cand.rule);
-      const Debug& d = program_.debug;
-      const Chunk& ch = program_.chunks[cand.chunk];
-      if (!d.empty() && ch.start < d.instr_loc.size()) {
-        const Loc& l = d.locs[d.instr_loc[ch.start]];
-        if (l.line > 0) where = fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
-      }
+      std::string where = instruction_location(program_, program_.chunks[cand.chunk].start);
+      if (where.empty()) where = rule_where(cand.rule);
       return Error{where.empty() ? "rules" : where,
                    fmt::format("in {}: {}", rule_name(cand.rule), checked.error().message)};
     }
