@@ -46,6 +46,8 @@ std::string_view stmt_word(StmtKind k) {
       return "`offset`";
     case StmtKind::Reverse:
       return "`reverse`";
+    case StmtKind::Retract:
+      return "`retract`";
   }
   return "?";
 }
@@ -439,6 +441,14 @@ void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int n
             .error("E0401", s.span, "`default` is only allowed in a replacer",
                    fmt::format("inside `{}`", where))
             .help("`default` stands for the element's own G-code: use it in `replace path { ... }`");
+      emitted = true;
+      return;
+    case StmtKind::Retract:
+      if (!replace)
+        sink_
+            .error("E0401", s.span, "`retract` is only allowed in a replacer", fmt::format("inside `{}`", where))
+            .help("the slicer retracts before the travels that need it; a replacer that moves on its own "
+                  "says where with `retract`");
       emitted = true;
       return;
     case StmtKind::Offset:

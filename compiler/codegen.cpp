@@ -640,6 +640,9 @@ class Generator {
       case StmtKind::Reverse:
         emit(VOp::Reverse);
         break;
+      case StmtKind::Retract:
+        emit(VOp::Retract);
+        break;
       case StmtKind::Assign:
       case StmtKind::Hook:
       case StmtKind::Replace:

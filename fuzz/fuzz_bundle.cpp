@@ -51,6 +51,7 @@ struct NullApi final : ctx::ReplaceApi {
   Status emit_default() override { return ok_status(); }
   Status offset(double) override { return ok_status(); }
   Status reverse() override { return ok_status(); }
+  void retract() override { ++n; }
 };
 
 void run(vm::Program program, const uint8_t* data, size_t size) {

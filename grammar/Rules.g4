@@ -35,6 +35,7 @@ stmt
   | DEFAULT                                                        # defaultStmt
   | OFFSET expr                                                    # offsetStmt
   | REVERSE                                                        # reverseStmt
+  | RETRACT                                                        # retractStmt
   ;
 
 ifStmt : IF expr block (ELSE (block | ifStmt))? ;
@@ -98,6 +99,7 @@ WITH : 'with' ;
 DEFAULT : 'default' ;
 OFFSET : 'offset' ;
 REVERSE : 'reverse' ;
+RETRACT : 'retract' ;
 AND : 'and' ;
 OR : 'or' ;
 NOT : 'not' ;

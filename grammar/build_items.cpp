@@ -175,6 +175,8 @@ StmtPtr AstBuilder::stmt(RulesParser::StmtContext* ctx) {
     ok = (s->value = expr(c10->expr())) != nullptr;
   } else if (dynamic_cast<RulesParser::ReverseStmtContext*>(ctx)) {
     s->kind = StmtKind::Reverse;
+  } else if (dynamic_cast<RulesParser::RetractStmtContext*>(ctx)) {
+    s->kind = StmtKind::Retract;
   } else {
     ok = false;
   }

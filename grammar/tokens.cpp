@@ -82,6 +82,7 @@ bool starts_statement(size_t t) {
     case L::DEFAULT:
     case L::OFFSET:
     case L::REVERSE:
+    case L::RETRACT:
     case L::RBRACE:
     case L::SEMI:
     case L::NUMBER:

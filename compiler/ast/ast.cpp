@@ -204,6 +204,9 @@ void dump_stmt(std::string& out, const Stmt& st, int depth) {
     case StmtKind::Reverse:
       out += pad + "reverse\n";
       break;
+    case StmtKind::Retract:
+      out += pad + "retract\n";
+      break;
   }
 }
 

@@ -120,6 +120,7 @@ enum class StmtKind : uint8_t {
   Default,
   Offset,  // offset value
   Reverse,
+  Retract,  // retract the filament now (replacers); the next extrusion unretracts
 };
 
 enum class When : uint8_t { Before, After };

@@ -66,7 +66,7 @@ function sources() {
 }
 
 const RESERVED = ('use param rule when on append before after replace gcode comment let if then else for in move to ' +
-  'travel extrude with default offset reverse and or not mod true false').split(' ');
+  'travel extrude with default offset reverse retract and or not mod true false').split(' ');
 
 // Character ranges of strings and comments, found without the grammar (for the independent checks).
 function lexRanges(text) {

@@ -201,6 +201,9 @@ class Formatter final : public ctx::LineSink {
         type(p ? p->kind : PathKind::Custom, o.width);
         extrude(o.to, o.speed, toolpath::bead_area_mm2(o.width, height_) * o.flow / filament_area_);
         break;
+      case Op::Kind::Retract:
+        retract();
+        break;
       case Op::Kind::Default:
         break;
     }
@@ -247,24 +250,29 @@ class Formatter final : public ctx::LineSink {
     append_fixed(t, relative_ ? new_int - e_int_ : new_int, 5);
     e_int_ = new_int;
   }
-  void travel(const geo::Point& to, bool retract) {
+  // Pulls the filament back (and lifts, with retract_lift) unless it already is; the next
+  // extrusion undoes it.
+  void retract() {
+    if (retracted_ || retract_ <= 0) return;
     auto& t = out_.text;
-    if (retract && !retracted_ && retract_ > 0) {
-      t += "G1";
-      e_word(e_int_ - retract_);
-      t += " F";
-      append_int(t, retract_f_);
+    t += "G1";
+    e_word(e_int_ - retract_);
+    t += " F";
+    append_int(t, retract_f_);
+    t += '\n';
+    retracted_ = true;
+    ++out_.retractions;
+    f_ = retract_f_;
+    if (lift_ > 0) {
+      t += "G1 Z";
+      append_fixed(t, z_um_ + std::llround(lift_ * 1000), 3);
       t += '\n';
-      retracted_ = true;
-      ++out_.retractions;
-      f_ = retract_f_;
-      if (lift_ > 0) {
-        t += "G1 Z";
-        append_fixed(t, z_um_ + std::llround(lift_ * 1000), 3);
-        t += '\n';
-        lifted_ = true;
-      }
+      lifted_ = true;
     }
+  }
+  void travel(const geo::Point& to, bool retract_first) {
+    auto& t = out_.text;
+    if (retract_first) retract();
     t += "G1";
     xy(to);
     if (f_ != travel_f_) {

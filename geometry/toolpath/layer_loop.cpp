@@ -45,6 +45,7 @@ class IslandReplace final : public ctx::ReplaceApi {
   Status emit_default() override;
   Status offset(double mm) override;
   Status reverse() override { return Error{"replace island", "reverse applies to paths, not islands"}; }
+  void retract() override { ip_.ops.push_back({Op::Kind::Retract, {}, 0, 1, 0, {}}); }
   Status status = ok_status();
 
  private:
@@ -68,6 +69,7 @@ class PathReplace final : public ctx::ReplaceApi {
   }
   Status offset(double mm) override;
   Status reverse() override;
+  void retract() override { p_.ops.push_back({Op::Kind::Retract, {}, 0, 1, 0, {}}); }
 
  private:
   LayerTask& t_;
@@ -677,7 +679,9 @@ struct TimeVisitor {
     }
   }
   void op(const IslandPlan*, const PathPlan*, const Op& op) {
-    if (op.kind == Op::Kind::Travel) {
+    if (op.kind == Op::Kind::Retract && S.print_props[PropId::RetractLength] > 0) {
+      clock.pause(2 * S.print_props[PropId::RetractLength] / S.print_props[PropId::RetractSpeed]);
+    } else if (op.kind == Op::Kind::Travel) {
       travel(op.to,
              std::sqrt(dist2(pos, op.to)) * geo::kMmPerUnit > S.print_props[PropId::RetractBeforeTravel]);
     } else if (op.kind == Op::Kind::Extrude) {

@@ -18,7 +18,7 @@ class Comber;
 
 // One step of a replacer's output (`move to`, `gcode`, `comment`, `default`).
 struct Op {
-  enum class Kind : uint8_t { Extrude, Travel, Text, Default };
+  enum class Kind : uint8_t { Extrude, Travel, Text, Default, Retract };
   Kind kind = Kind::Text;
   geo::Point to;        // Extrude / Travel
   float speed = 0;      // mm/s

@@ -93,6 +93,9 @@ class ReplaceApi {
   virtual Status offset(double mm) = 0;
   // `reverse`: paths only.
   virtual Status reverse() = 0;
+  // `retract`: pull the filament back now (retract_length, and retract_lift); the next extruding
+  // move, of the replacer or after it, unretracts first.
+  virtual void retract() = 0;
 };
 
 // `replace island { ... }` and `replace path { ... }`.

@@ -505,6 +505,12 @@ bool Machine::exec(uint32_t ci, double& result) {
       }
     NEXT;
   }
+  CASE(Retract) {
+    emitted_ += 24;
+    if (emitted_ > kMaxOutputBytes) return fault(Fault::OutputTooLong, ci, pc());
+    if (api) api->retract();
+    NEXT;
+  }
   CASE(Reverse) {
     if (api)
       if (Status s = api->reverse(); !s) {

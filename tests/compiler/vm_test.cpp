@@ -46,6 +46,7 @@ struct Api final : ctx::ReplaceApi {
     log.push_back(fmt::format("offset {:g}", mm));
     return ok_status();
   }
+  void retract() override { log.push_back("retract"); }
   Status reverse() override {
     log.push_back("reverse");
     return ok_status();
@@ -301,6 +302,7 @@ rule "reverse outer walls" when path.kind == outer_perimeter {
   replace path {
     reverse
     default
+    retract
     move to (1 mm, 2 mm) travel
     move to (3 mm, 4 mm) with flow = 90%, speed = 20 mm/s, width = 0.5 mm
   }
@@ -332,7 +334,8 @@ rule "shrink small islands" when island.area < 10 mm2 {
   api.log.clear();
   c.set(FieldId::PathKind, static_cast<double>(schema::PathKind::OuterPerimeter));
   REQUIRE(*rs->replace(Level::Path, c, api));
-  CHECK(api.log == std::vector<std::string>{"reverse", "default", "travel 1,2", "move 3,4 speed=20 flow=0.9 width=0.5"});
+  CHECK(api.log ==
+        std::vector<std::string>{"reverse", "default", "retract", "travel 1,2", "move 3,4 speed=20 flow=0.9 width=0.5"});
   api.log.clear();
   c.set(FieldId::PathKind, static_cast<double>(schema::PathKind::Infill));
   CHECK_FALSE(*rs->replace(Level::Path, c, api));

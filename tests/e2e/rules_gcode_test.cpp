@@ -403,3 +403,37 @@ rule "pause" when layer.z_bottom >= pause_height and below.z_bottom < pause_heig
   auto moved = slice(dir, "moved", box, rules, {{"pause_height", "2.1"}});            // 2.1 mm
   CHECK(at_layer(moved) == std::pair<int, std::string>(11, "M601 ; pause at 2.1 mm"));  // z_bottom 2.2
 }
+
+SCENARIO("rules: `retract` in a replacer pulls the filament back before its own travel") {
+  test::TempDir dir("rules-retract");
+  auto g = slice(dir, "wipe", geo::box({20, 20, 1}), R"(
+rule "wipe and lift away" when path.kind == outer_perimeter {
+  replace path {
+    default
+    retract
+    move to (100 mm, 150 mm) travel
+  }
+}
+)");
+  // After each outer perimeter: a retraction (E pulled back, no XY), then the travel to
+  // (100, 150), and the next extrusion starts with the unretraction.
+  int seen = 0;
+  for (size_t i = 0; i + 1 < g.moves.size(); ++i) {
+    const auto& m = g.moves[i];
+    if (!(m.has_xy && !m.has_e && m.x == 100 && m.y == 150)) continue;
+    ++seen;
+    REQUIRE(i > 0);
+    const auto& before = g.moves[i - 1];
+    CHECK(before.has_e);
+    CHECK_FALSE(before.has_xy);
+    CHECK(before.de < 0);
+    // The next E move is the unretraction, before any extrusion.
+    for (size_t k = i + 1; k < g.moves.size(); ++k) {
+      if (!g.moves[k].has_e) continue;
+      CHECK_FALSE(g.moves[k].has_xy);
+      CHECK(g.moves[k].de > 0);
+      break;
+    }
+  }
+  CHECK(seen == 5);  // five layers
+}
