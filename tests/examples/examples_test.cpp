@@ -273,15 +273,19 @@ TEST_CASE("example replacers: shrunk first layer, reversed odd walls, a wipe aft
     INFO("layer " << layer);
     if (layer > 0) CHECK((s > 0) != (swept[layer - 1] > 0));
   }
-  // A wipe after every even layer's wall: three moves without extrusion along the loop.
+  // A wipe after every even layer's wall: a retraction, then three moves without extrusion
+  // along the loop.
   auto wipes = lines_starting(g, "; wipe");
   CHECK(wipes.size() == 10);
-  for (size_t w : wipes)
-    for (size_t k = 1; k <= 3; ++k) {
+  for (size_t w : wipes) {
+    const auto& r = g.lines[w + 1];
+    CHECK(r.rfind("G1 E", 0) == 0);
+    for (size_t k = 2; k <= 4; ++k) {
       const auto& l = g.lines[w + k];
       CHECK(l.rfind("G1 X", 0) == 0);
       CHECK(l.find(" E") == std::string::npos);
     }
+  }
 }
 
 TEST_CASE("example python-fill-angle: infill along each bar, skins crossing on odd layers") {
