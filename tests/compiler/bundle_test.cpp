@@ -187,10 +187,7 @@ TEST_CASE("link: properties that read each other across files are refused") {
 }
 
 TEST_CASE("docs/bundles.md lists every opcode with the operand kinds of opcodes.def") {
-  std::ifstream in(test::source_dir() / "docs" / "bundles.md");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string doc = ss.str();
+  const std::string doc = test::read_file(test::source_dir() / "docs" / "bundles.md");
   REQUIRE_FALSE(doc.empty());
   auto letter = [](vm::Operand k) {
     switch (k) {

@@ -13,38 +13,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct Block {
-  int line;
-  std::string text;
-};
-
-// The ```rules blocks of a markdown file.
-std::vector<Block> rules_blocks(const std::string& md) {
-  std::vector<Block> out;
-  std::istringstream in(md);
-  std::string line;
-  int n = 0;
-  Block* open = nullptr;
-  while (std::getline(in, line)) {
-    ++n;
-    if (!open && line == "```rules") {
-      out.push_back(Block{n + 1, ""});
-      open = &out.back();
-    } else if (open && line == "```") {
-      open = nullptr;
-    } else if (open) {
-      open->text += line + "\n";
-    }
-  }
-  return out;
-}
+using tranche::test::Block;
+using tranche::test::rules_blocks;
+std::string read(const fs::path& p) { return tranche::test::read_file(p); }
 
 void check_examples(const char* doc) {
   fs::path root = tranche::test::source_dir();

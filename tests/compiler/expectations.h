@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -21,6 +22,31 @@
 #include "compiler/frontend.h"
 
 namespace tranche::test {
+
+// The ```rules blocks of a markdown file, with the line of each block's first line.
+struct Block {
+  int line;
+  std::string text;
+};
+inline std::vector<Block> rules_blocks(const std::string& md) {
+  std::vector<Block> out;
+  std::istringstream in(md);
+  std::string line;
+  int n = 0;
+  bool open = false;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!open && line == "```rules") {
+      out.push_back(Block{n + 1, ""});
+      open = true;
+    } else if (open && line == "```") {
+      open = false;
+    } else if (open) {
+      out.back().text += line + "\n";
+    }
+  }
+  return out;
+}
 
 struct Expected {
   std::string level, code, file;

@@ -13,22 +13,7 @@
 
 namespace tranche::test {
 
-// Compiles `text` (which must check without errors) to a RuleSet.
-inline std::shared_ptr<const vm::RuleSet> rules(const std::string& text, bool debug = true) {
-  Compiled c;
-  compile_text(c, text, false);
-  for (const auto& d : c.sink.all())
-    if (d.severity == diag::Severity::Error) FAIL_CHECK(d.code << ": " << d.message);
-  REQUIRE(c.program.checked);
-  compiler::CodegenOptions o;
-  o.debug = debug;
-  auto p = compiler::generate(c.program, o);
-  REQUIRE_MESSAGE(p.ok(), (p.ok() ? "" : p.error().to_string()));
-  auto rs = vm::RuleSet::create(std::move(*p));
-  REQUIRE_MESSAGE(rs.ok(), (rs.ok() ? "" : rs.error().to_string()));
-  return *rs;
-}
-
+// Compiles `text` (which must check without errors) to a program.
 inline vm::Program program(const std::string& text, bool debug = true) {
   Compiled c;
   compile_text(c, text, false);
@@ -38,8 +23,15 @@ inline vm::Program program(const std::string& text, bool debug = true) {
   compiler::CodegenOptions o;
   o.debug = debug;
   auto p = compiler::generate(c.program, o);
-  REQUIRE(p.ok());
+  REQUIRE_MESSAGE(p.ok(), (p.ok() ? "" : p.error().to_string()));
   return std::move(*p);
+}
+
+// The same, ready to run.
+inline std::shared_ptr<const vm::RuleSet> rules(const std::string& text, bool debug = true) {
+  auto rs = vm::RuleSet::create(program(text, debug));
+  REQUIRE_MESSAGE(rs.ok(), (rs.ok() ? "" : rs.error().to_string()));
+  return *rs;
 }
 
 struct Lines final : ctx::LineSink {

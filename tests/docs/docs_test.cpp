@@ -20,37 +20,9 @@ using namespace tranche;
 
 namespace {
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct Block {
-  int line;
-  std::string text;
-};
-
-std::vector<Block> rules_blocks(const std::string& md) {
-  std::vector<Block> out;
-  std::istringstream in(md);
-  std::string line;
-  int n = 0;
-  bool open = false;
-  while (std::getline(in, line)) {
-    ++n;
-    if (!open && line == "```rules") {
-      out.push_back(Block{n + 1, ""});
-      open = true;
-    } else if (open && line == "```") {
-      open = false;
-    } else if (open) {
-      out.back().text += line + "\n";
-    }
-  }
-  return out;
-}
+using test::Block;
+using test::rules_blocks;
+std::string read(const fs::path& p) { return test::read_file(p); }
 
 // ---- schema tables ----------------------------------------------------------------------
 

@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace tranche::test {
@@ -16,6 +18,14 @@ inline std::filesystem::path source_dir() {
 inline std::filesystem::path binary_dir() {
   if (const char* s = std::getenv("TRANCHE_BINARY_DIR")) return s;
   return TRANCHE_BINARY_DIR_DEFAULT;
+}
+
+// A file's bytes ("" when it cannot be read).
+inline std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 // A fresh directory for one test's files, removed at scope exit.
