@@ -120,6 +120,7 @@ class Formatter final : public ctx::LineSink {
     if (!status_) return status_.error();
     out_.e_mm = e_exact_;
     out_.last = pos_;
+    out_.ends_retracted = retracted_ && !layer_change_;
     out_.comber = plan_.comber;
     return std::move(out_);
   }

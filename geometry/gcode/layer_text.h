@@ -30,6 +30,7 @@ struct LayerText {
   double e_mm = 0;  // filament fed, mm (retractions excluded)
   bool any_move = false;
   geo::Point first, last;  // model units: where the layer's first travel goes, where it ends
+  bool ends_retracted = false;  // a retraction (a replacer's) that no extrusion of the layer undid
   int travels = 0, retractions = 0;
   std::shared_ptr<const toolpath::Comber> comber;  // the layer's material, to comb the layer change
 };

@@ -387,14 +387,22 @@ class PrintWriter final : public ctx::LineSink {
                        : 1e9;
       bool leaves = !has_last || !t.comber || !t.comber->inside(last) || !t.comber->direct(last, t.first);
       if (leaves && has_last && t.comber && len > P[PropId::RetractBeforeTravel]) {
-        if (auto route = t.comber->route(last, t.first)) {
-          via = std::move(*route);
-          leaves = false;
-          len = toolpath::Comber::length_mm(last, via, t.first);
+        // From the layer below's last point, which may lie just outside this layer.
+        if (auto in = t.comber->enter(last, P[PropId::Width])) {
+          if (auto route = t.comber->route(*in, t.first)) {
+            if (*in != last) via.push_back(*in);
+            via.insert(via.end(), route->begin(), route->end());
+            leaves = false;
+            len = toolpath::Comber::length_mm(last, via, t.first);
+          }
         }
       }
       change_retract = len > P[PropId::RetractLongTravel] || (leaves && len > P[PropId::RetractBeforeTravel]);
     }
+    // Still retracted from the layer below (a replacer's retract ended it): this layer's first
+    // extrusion unretracts, and the layer change does not retract a second time.
+    const bool already = t.any_move && r > 0 && ends_retracted_;
+    if (already) change_retract = true;
     const long rf = std::lround(P[PropId::RetractSpeed] * 60);
     const bool rel = P[PropId::RelativeE] != 0;
     for (const auto& m : t.marks) {
@@ -414,7 +422,13 @@ class PrintWriter final : public ctx::LineSink {
           bed_ = m.value;
           break;
         case LayerText::Mark::Kind::LayerRetract:
-          if (change_retract) {
+          if (already) {
+            if (!rel) {  // the filament is where E = -retract_length after this layer's G92 E0
+              out += "G92 E";
+              append_fixed(out, -std::llround(r * 1e5), 5);
+              out += '\n';
+            }
+          } else if (change_retract) {
             out += "G1 E";
             append_fixed(out, -std::llround(r * 1e5), 5);
             out += fmt::format(" F{}\n", rf);
@@ -453,6 +467,7 @@ class PrintWriter final : public ctx::LineSink {
       }
       last = t.last;
       has_last = true;
+      ends_retracted_ = t.ends_retracted;
     }
     (void)clock;
     summary_.time_s += item.time_s + change;
@@ -499,6 +514,7 @@ class PrintWriter final : public ctx::LineSink {
   std::string pending_;
   Slot time_slot_, mm_slot_, cm3_slot_, g_slot_, cura_time_slot_, cura_fil_slot_;
   double fan_ = -1, nozzle_ = -1, bed_ = -1;
+  bool ends_retracted_ = false;  // the last layer written ended retracted (LayerText::ends_retracted)
   GcodeSummary summary_;
   std::vector<geo::Layer> simplified_;  // what setup_.layers shows
 };

@@ -434,6 +434,15 @@ rule "wipe and lift away" when path.kind == outer_perimeter {
       CHECK(g.moves[k].de > 0);
       break;
     }
+    // The outer perimeter ends the layer (infill first): the layer change must not retract a
+    // second time, and the filament pulled back is pushed forward exactly once.
+    double net = 0;
+    bool extrudes_after = false;
+    for (size_t k = i - 1; k < g.moves.size() && !extrudes_after; ++k) {
+      extrudes_after = g.moves[k].has_xy && g.moves[k].de > 0;
+      if (!g.moves[k].has_xy) net += g.moves[k].de;
+    }
+    if (extrudes_after) CHECK(net == doctest::Approx(0).epsilon(1e-9));  // not after the last layer
   }
   CHECK(seen == 5);  // five layers
 }
