@@ -1,25 +1,17 @@
-// Cuts a fill region into cells monotone for the fill angle (geometry/polygon's decompose) and
-// labels each cell edge: Real where it lies on the island's fill border (along the innermost
-// perimeter), Artificial where it is a cut or the border between a solid and a sparse region.
+// The shape a fill region is zig-zagged in, with every edge labelled: Real where it lies on the
+// island's fill border (along the innermost perimeter), Artificial where it is the border between
+// a solid and a sparse region. The region's cells are the zig-zags zigzag() makes of it: its
+// monotone pieces at the resolution of the fill lines (docs/gcode.md, "Cells").
 #pragma once
-
-#include <vector>
 
 #include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/zigzag.h"
-#include "runtime/base/report.h"
 
 namespace tranche::toolpath {
 
-struct CellShape {
-  FillShape shape;  // one ring for a monotone cell
-  double area_mm2 = 0;
-  bool monotone = true;  // false: decomposition failed here and the zig-zag may need several runs
-};
-
 // `region`: rings of one fill region (non-zero fill); `fill_border`: edges of the whole fill
-// region of the island; angle in degrees. `where` names the layer/island for warnings.
-std::vector<CellShape> make_cells(const geo::Rings& region, double angle_deg, const EdgeGrid& fill_border,
-                                  Report& report, const std::string& where);
+// region of the island. The rings come out of a union: outer counter-clockwise, holes clockwise,
+// none overlapping.
+FillShape region_shape(const geo::Rings& region, const EdgeGrid& fill_border);
 
 }  // namespace tranche::toolpath

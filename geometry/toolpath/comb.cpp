@@ -38,6 +38,20 @@ double Comber::length_mm(const Point& a, const geo::Ring& via, const Point& b) {
   return len + len_mm(prev, b);
 }
 
+std::optional<Point> Comber::enter(const Point& a, double tol_mm) const {
+  build_comb();
+  if (comb_.empty()) return std::nullopt;
+  if (comb_grid_.inside(a)) return a;
+  const double tol = tol_mm * geo::kUnitsPerMm;
+  if (auto [d2, q] = nearest_on_rings(comb_, a); d2 <= tol * tol && d2 > 0) {
+    double d = std::sqrt(d2), push = 5e3;  // units: 5 µm
+    Point in(q.X + static_cast<geo::coord_t>(std::llround(double(q.X - a.X) / d * push)),
+             q.Y + static_cast<geo::coord_t>(std::llround(double(q.Y - a.Y) / d * push)));
+    if (comb_grid_.inside(in)) return in;
+  }
+  return std::nullopt;
+}
+
 std::optional<geo::Ring> Comber::route(const Point& a, const Point& b, double slack_mm) const {
   build_comb();
   if (comb_.empty() || !comb_grid_.inside(a) || !comb_grid_.inside(b)) return std::nullopt;

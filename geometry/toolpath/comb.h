@@ -27,6 +27,12 @@ class Comber {
   // longer than max(2 × the straight distance, straight + `slack_mm`).
   std::optional<geo::Ring> route(const geo::Point& a, const geo::Point& b, double slack_mm = 15) const;
 
+  // A point well inside the material next to `a`: `a` itself when it is, else the nearest point
+  // of the shrunk material pushed 5 µm further in, if it is within `tol_mm` of `a`. The layer
+  // change starts from the last point of the layer below, which lies outside this layer where
+  // the wall slopes inward: stepping in there crosses no more than the bead just printed.
+  std::optional<geo::Point> enter(const geo::Point& a, double tol_mm) const;
+
   // Length in mm of the travel a → via... → b.
   static double length_mm(const geo::Point& a, const geo::Ring& via, const geo::Point& b);
 

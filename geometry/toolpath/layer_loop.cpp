@@ -229,21 +229,35 @@ Status LayerTask::layer_level() {
     sk.border.assign(sk.piece_count(), Border::None);
     pos = sk.pts.front();
   }
+  // Islands nearest first (by bounding box, from the previous island's centre). Odd layers take
+  // that order backwards, so that a layer starts on the island where the one below ended: the
+  // layer change then stays inside the part. (Layers are planned in parallel: a layer cannot
+  // know where the one below ended, but both find the same order when their islands match.)
+  std::vector<size_t> seq;
+  {
+    std::vector<char> used(plan_.islands.size(), 0);
+    geo::Point at = pos;
+    for (size_t step = 0; step < plan_.islands.size(); ++step) {
+      double bd = 1e300;
+      size_t bi = 0;
+      for (size_t i = 0; i < plan_.islands.size(); ++i) {
+        if (used[i]) continue;
+        geo::BBox2 b = bbox(plan_.islands[i].shape);
+        double dx = std::max<double>({0.0, double(b.min_x - at.X), double(at.X - b.max_x)});
+        double dy = std::max<double>({0.0, double(b.min_y - at.Y), double(at.Y - b.max_y)});
+        double d = b.empty() ? 1e299 : dx * dx + dy * dy;
+        if (d < bd) bd = d, bi = i;
+      }
+      used[bi] = 1;
+      seq.push_back(bi);
+      geo::BBox2 b = bbox(plan_.islands[bi].shape);
+      if (!b.empty()) at = geo::Point((b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2);
+    }
+  }
+  if (L % 2 == 1) std::reverse(seq.begin(), seq.end());
   std::vector<IslandPlan> ordered;
   ordered.reserve(plan_.islands.size());
-  std::vector<char> used(plan_.islands.size(), 0);
-  for (size_t step = 0; step < plan_.islands.size(); ++step) {
-    double bd = 1e300;
-    size_t bi = 0;
-    for (size_t i = 0; i < plan_.islands.size(); ++i) {
-      if (used[i]) continue;
-      geo::BBox2 b = bbox(plan_.islands[i].shape);
-      double dx = std::max<double>({0.0, double(b.min_x - pos.X), double(pos.X - b.max_x)});
-      double dy = std::max<double>({0.0, double(b.min_y - pos.Y), double(pos.Y - b.max_y)});
-      double d = b.empty() ? 1e299 : dx * dx + dy * dy;
-      if (d < bd) bd = d, bi = i;
-    }
-    used[bi] = 1;
+  for (size_t bi : seq) {
     order(plan_.islands[bi], pos);
     ordered.push_back(std::move(plan_.islands[bi]));
   }
@@ -406,27 +420,29 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
     fs.pitch_mm = g.pitch_mm;
     flow_scale = std::clamp(g.ratio, 0.6, 1.4);
   }
-  for (CellShape& cs : make_cells(region.rings, angle, border, report_, where())) {
+  // Zig-zags that cannot continue one another are joined by a walk along the border of at most
+  // five line pitches (sparse: 11 mm at 20 %, about PrusaSlicer's 12 mm infill anchors) or 16
+  // beads (solid: 6.7 mm, half the way round a 4 mm hole). On the Stanford bunny, solid links of
+  // 2 / 8 / 16 beads leave 5192 / 4529 / 4228 trips.
+  fs.link_max_mm = solid ? 16 * s : 5 * fs.pitch_mm;
+  // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.
+  for (FillPath& fp : zigzag(region_shape(region.rings, border), fs)) {
     CellPlan cell;
     cell.index = static_cast<int>(ip.cells.size());
-    cell.area_mm2 = cs.area_mm2;
+    cell.area_mm2 = fp.area_mm2;
     cell.fill_angle_deg = angle;
     cell.solid = solid;
-    bool any = false;
-    for (FillPath& fp : zigzag(cs.shape, fs)) {
-      PathPlan p;
-      p.kind = region.kind;
-      p.cell = cell.index;
-      p.width = static_cast<float>(w);
-      p.flow_scale = static_cast<float>(flow_scale);
-      if (solid) p.border_flow = 0.5f;
-      p.pts = std::move(fp.pts);
-      p.border = std::move(fp.border);
-      p.props = *props;
-      ip.paths.push_back(std::move(p));
-      any = true;
-    }
-    if (any) ip.cells.push_back(cell);
+    ip.cells.push_back(cell);
+    PathPlan p;
+    p.kind = region.kind;
+    p.cell = cell.index;
+    p.width = static_cast<float>(w);
+    p.flow_scale = static_cast<float>(flow_scale);
+    if (solid) p.border_flow = 0.5f;
+    p.pts = std::move(fp.pts);
+    p.border = std::move(fp.border);
+    p.props = *props;
+    ip.paths.push_back(std::move(p));
   }
   region_grids_[static_cast<size_t>(ip.index)].emplace_back(region.kind, EdgeGrid(region.rings));
   return ok_status();
@@ -435,6 +451,7 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
 void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
   if (ip.replaced && ip.paths.empty()) return;
   const bool outer_first = ip.props[PropId::OuterFirst] != 0;
+  const bool infill_first = ip.props[PropId::InfillFirst] != 0;
   const auto seam = static_cast<schema::Seam>(static_cast<int>(ip.props[PropId::Seam]));
   std::vector<PathPlan> loops, fills, out;
   for (auto& p : ip.paths) (p.closed ? loops : fills).push_back(std::move(p));
@@ -442,34 +459,56 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
   std::stable_sort(loops.begin(), loops.end(), [&](const PathPlan& a, const PathPlan& b) {
     return outer_first ? a.perimeter < b.perimeter : a.perimeter > b.perimeter;
   });
-  for (size_t i = 0; i < loops.size();) {
-    size_t j = i;
-    while (j < loops.size() && loops[j].perimeter == loops[i].perimeter) ++j;
-    std::vector<size_t> seams(j - i);
-    for (size_t k = i; k < j; ++k) seams[k - i] = choose_seam(loops[k].pts, seam, pos);
-    std::vector<char> used(j - i, 0);
-    for (size_t step = i; step < j; ++step) {
-      double bd = 1e300;
-      size_t bk = i;
-      for (size_t k = i; k < j; ++k) {
-        if (used[k - i]) continue;
-        size_t s = seam == schema::Seam::Nearest ? choose_seam(loops[k].pts, seam, pos) : seams[k - i];
-        seams[k - i] = s;
-        double d = dist2(pos, loops[k].pts[s]);
-        if (d < bd) bd = d, bk = k;
+  const int deepest = loops.empty() ? 0 : std::max(loops.front().perimeter, loops.back().perimeter);
+  // `link`: the infill was printed just before. The first loop, if it is an innermost one,
+  // starts at its point nearest the infill's end (inner seams do not show), and the infill's
+  // last path reaches it by a short extrusion instead of a travel.
+  auto emit_loops = [&](bool link) {
+    for (size_t i = 0; i < loops.size();) {
+      size_t j = i;
+      while (j < loops.size() && loops[j].perimeter == loops[i].perimeter) ++j;
+      std::vector<size_t> seams(j - i);
+      for (size_t k = i; k < j; ++k) seams[k - i] = choose_seam(loops[k].pts, seam, pos);
+      std::vector<char> used(j - i, 0);
+      for (size_t step = i; step < j; ++step) {
+        double bd = 1e300;
+        size_t bk = i;
+        if (link && step == 0 && loops[i].perimeter == deepest) {
+          geo::Point at;
+          for (size_t k = i; k < j; ++k) {
+            auto [d, q] = nearest_on_loop(loops[k].pts, pos);
+            if (d < bd) bd = d, bk = k, at = q;
+          }
+          seams[bk - i] = insert_vertex(loops[bk].pts, at);
+          PathPlan& f = out.back();
+          double limit = 1.5 * std::max(f.width, loops[bk].width) * geo::kUnitsPerMm;
+          if (bd > 0 && bd <= limit * limit && !f.pts.empty() && f.pts.back() == pos) {
+            f.pts.push_back(loops[bk].pts[seams[bk - i]]);
+            f.border.push_back(Border::Artificial);
+          }
+        } else {
+          for (size_t k = i; k < j; ++k) {
+            if (used[k - i]) continue;
+            size_t s = seam == schema::Seam::Nearest ? choose_seam(loops[k].pts, seam, pos) : seams[k - i];
+            seams[k - i] = s;
+            double d = dist2(pos, loops[k].pts[s]);
+            if (d < bd) bd = d, bk = k;
+          }
+        }
+        used[bk - i] = 1;
+        PathPlan& p = loops[bk];
+        p.pts = open_loop_at(p.pts, seams[bk - i]);
+        p.border.assign(p.piece_count(), Border::Real);
+        pos = p.pts.front();
+        out.push_back(std::move(p));
       }
-      used[bk - i] = 1;
-      PathPlan& p = loops[bk];
-      p.pts = open_loop_at(p.pts, seams[bk - i]);
-      p.border.assign(p.piece_count(), Border::Real);
-      pos = p.pts.front();
-      out.push_back(std::move(p));
+      i = j;
     }
-    i = j;
-  }
-  // Zig-zags: the order with the fewest and shortest travels, either end may start. A zig-zag
-  // that starts right next to where the previous one of the same region ended is joined to it
-  // by a short extrusion (across the cut between their cells) instead of a travel.
+  };
+  // Zig-zags (one per cell): the order with the fewest and shortest travels, either end may
+  // start. A zig-zag that starts right next to where the previous one of the same region ended
+  // is joined to it by a short extrusion (across the gap between their line ends) instead of a
+  // travel.
   const auto& grids = region_grids_[static_cast<size_t>(ip.index)];
   auto joinable = [&](const PathPlan& a, const PathPlan& b, const geo::Point& from, const geo::Point& to) {
     if (a.kind != b.kind || a.width != b.width) return false;
@@ -482,41 +521,54 @@ void LayerTask::order(IslandPlan& ip, geo::Point& pos) {
     double limit = std::max(2.5 * s, 1.5 * pitch) * geo::kUnitsPerMm;
     return grid && dist2(from, to) <= limit * limit && !grid->crosses(from, to);
   };
-  // A travel costs its length plus this (mm): fewer travels first, then shorter ones.
-  constexpr double kTravelMm = 10;
-  auto step = [&](size_t i, const geo::Point& a, size_t j, const geo::Point& b) {
-    if (i != kStart && joinable(fills[i], fills[j], a, b)) return 0.0;
-    return std::sqrt(dist2(a, b)) * geo::kMmPerUnit + kTravelMm;
-  };
-  std::vector<const geo::Ring*> ends;
-  for (const auto& f : fills) ends.push_back(&f.pts);
-  std::vector<Visit> visits = chain_open_best(ends, pos, step);
-  std::vector<PathPlan> chained;
-  for (const Visit& v : visits) {
-    PathPlan& p = fills[v.index];
-    if (v.reversed) {
-      std::reverse(p.pts.begin(), p.pts.end());
-      std::reverse(p.border.begin(), p.border.end());
+  auto emit_fills = [&](bool before_loops) {
+    // A travel costs its length plus this (mm): fewer travels first, then shorter ones.
+    constexpr double kTravelMm = 10;
+    // Before the loops, the infill should end where the innermost loop will start next to the
+    // outer loop's seam, so that the step from one loop to the next is short.
+    std::vector<geo::Point> seams_out;
+    if (before_loops && seam != schema::Seam::Nearest)
+      for (const auto& l : loops)
+        if (l.perimeter == 0) seams_out.push_back(l.pts[choose_seam(l.pts, seam, pos)]);
+    EndCost end_cost;
+    if (!seams_out.empty())
+      end_cost = [&](const geo::Point& e) {
+        double bd = 1e300;
+        for (const auto& q : seams_out) bd = std::min(bd, dist2(e, q));
+        return std::sqrt(bd) * geo::kMmPerUnit;
+      };
+    auto step = [&](size_t i, const geo::Point& a, size_t j, const geo::Point& b) {
+      if (i != kStart && joinable(fills[i], fills[j], a, b)) return 0.0;
+      return std::sqrt(dist2(a, b)) * geo::kMmPerUnit + kTravelMm;
+    };
+    std::vector<const geo::Ring*> ends;
+    for (const auto& f : fills) ends.push_back(&f.pts);
+    const size_t first_fill = out.size();
+    for (const Visit& v : chain_open_best(ends, pos, step, 48, end_cost)) {
+      PathPlan& p = fills[v.index];
+      if (v.reversed) {
+        std::reverse(p.pts.begin(), p.pts.end());
+        std::reverse(p.border.begin(), p.border.end());
+      }
+      out.push_back(std::move(p));
     }
-    chained.push_back(std::move(p));
-  }
-  // Paths of one cell (several runs of a cell that is not monotone) stay together.
-  std::vector<int> first_seen;
-  for (const auto& p : chained)
-    if (std::find(first_seen.begin(), first_seen.end(), p.cell) == first_seen.end())
-      first_seen.push_back(p.cell);
-  const size_t first_fill = out.size();
-  for (int c : first_seen)
-    for (auto& p : chained)
-      if (p.cell == c) out.push_back(std::move(p));
-  for (size_t i = first_fill + 1; i < out.size(); ++i) {
-    PathPlan& prev = out[i - 1];
-    PathPlan& p = out[i];
-    if (prev.pts.empty() || p.pts.empty()) continue;
-    const geo::Point a = prev.pts.back();
-    if (!joinable(prev, p, a, p.pts.front())) continue;
-    p.pts.insert(p.pts.begin(), a);
-    p.border.insert(p.border.begin(), Border::Artificial);
+    for (size_t i = first_fill + 1; i < out.size(); ++i) {
+      PathPlan& prev = out[i - 1];
+      PathPlan& p = out[i];
+      if (prev.pts.empty() || p.pts.empty()) continue;
+      const geo::Point a = prev.pts.back();
+      if (!joinable(prev, p, a, p.pts.front())) continue;
+      p.pts.insert(p.pts.begin(), a);
+      p.border.insert(p.border.begin(), Border::Artificial);
+    }
+    if (out.size() > first_fill && !out.back().pts.empty()) pos = out.back().pts.back();
+  };
+  if (infill_first && !fills.empty()) {
+    emit_fills(true);
+    emit_loops(true);
+  } else {
+    emit_loops(false);
+    emit_fills(false);
   }
   if (!out.empty() && !out.back().pts.empty()) pos = out.back().pts.back();
   for (size_t i = 0; i < out.size(); ++i) out[i].index = static_cast<int>(i);

@@ -49,6 +49,49 @@ size_t choose_seam(const geo::Ring& loop, schema::Seam mode, const Point& from) 
   return best;
 }
 
+namespace {
+// Nearest point to p on segment a-b.
+Point project(const Point& a, const Point& b, const Point& p) {
+  double dx = double(b.X - a.X), dy = double(b.Y - a.Y), l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? std::clamp((double(p.X - a.X) * dx + double(p.Y - a.Y) * dy) / l2, 0.0, 1.0) : 0.0;
+  return Point(a.X + static_cast<geo::coord_t>(std::llround(t * dx)),
+               a.Y + static_cast<geo::coord_t>(std::llround(t * dy)));
+}
+}  // namespace
+
+std::pair<double, Point> nearest_on_loop(const geo::Ring& loop, const Point& p) {
+  double bd = 1e300;
+  Point best = p;
+  for (size_t i = 0, n = loop.size(); i < n; ++i) {
+    Point q = project(loop[i], loop[(i + 1) % n], p);
+    double d = dist2(q, p);
+    if (d < bd) bd = d, best = q;
+  }
+  return {bd, best};
+}
+
+std::pair<double, Point> nearest_on_rings(const geo::Rings& rings, const Point& p) {
+  std::pair<double, Point> best{1e300, p};
+  for (const auto& r : rings)
+    if (auto c = nearest_on_loop(r, p); c.first < best.first) best = c;
+  return best;
+}
+
+size_t insert_vertex(geo::Ring& loop, const Point& q) {
+  constexpr double kNear2 = 1e4 * 1e4;  // (10 µm)²
+  size_t n = loop.size(), best_v = 0, best_e = 0;
+  double dv = 1e300, de = 1e300;
+  for (size_t i = 0; i < n; ++i) {
+    double d = dist2(loop[i], q);
+    if (d < dv) dv = d, best_v = i;
+    double e = dist2(project(loop[i], loop[(i + 1) % n], q), q);
+    if (e < de) de = e, best_e = i;
+  }
+  if (n == 0 || dv <= kNear2) return best_v;
+  loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(best_e + 1), q);
+  return best_e + 1;
+}
+
 geo::Ring open_loop_at(const geo::Ring& loop, size_t start) {
   geo::Ring out;
   size_t n = loop.size();
@@ -80,7 +123,7 @@ std::vector<Visit> chain_open(const std::vector<const geo::Ring*>& paths, const 
 }
 
 std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const Point& from,
-                                   const StepCost& cost, size_t max_tries) {
+                                   const StepCost& cost, size_t max_tries, const EndCost& end_cost) {
   const size_t n = paths.size();
   auto start_of = [&](size_t i, bool rev) -> const Point& {
     return rev ? paths[i]->back() : paths[i]->front();
@@ -117,11 +160,12 @@ std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, c
       cur = bi;
       pos = end_of(bi, brev);
     }
+    if (end_cost && !order.empty()) total += end_cost(pos);
     return total;
   };
   std::vector<Visit> best, order;
   double best_cost = greedy(kStart, false, best);
-  if (n < 2 || n > max_tries) return best;
+  if (n < (end_cost ? 1 : 2) || n > max_tries) return best;
   for (size_t i = 0; i < n; ++i)
     for (bool rev : {false, true}) {
       if (paths[i]->empty()) continue;

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "geometry/core/geom.h"
@@ -21,6 +22,14 @@ namespace tranche::toolpath {
 size_t choose_seam(const geo::Ring& loop, schema::Seam mode, const geo::Point& from);
 // The loop as a closed polyline starting and ending at vertex `start`.
 geo::Ring open_loop_at(const geo::Ring& loop, size_t start);
+
+// The point of a closed loop nearest `p`, and its squared distance (units²).
+std::pair<double, geo::Point> nearest_on_loop(const geo::Ring& loop, const geo::Point& p);
+// The same over several closed rings.
+std::pair<double, geo::Point> nearest_on_rings(const geo::Rings& rings, const geo::Point& p);
+// Index of the loop's vertex at `q` (a point on the loop), inserted on its edge if no vertex is
+// within 10 µm of it.
+size_t insert_vertex(geo::Ring& loop, const geo::Point& q);
 
 // Squared distance in units².
 inline double dist2(const geo::Point& a, const geo::Point& b) {
@@ -45,7 +54,9 @@ using StepCost = std::function<double(size_t i, const geo::Point& a, size_t j, c
 // one greedy order from `from`. Greedy from the nozzle alone often fills the big cell first and
 // is left with a small one across the part; starting elsewhere lets each cell begin where the
 // previous one ended.
+// `end_cost`, if given, is added for where the last path ends (what comes next starts there).
+using EndCost = std::function<double(const geo::Point& end)>;
 std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const geo::Point& from,
-                                   const StepCost& cost, size_t max_tries = 48);
+                                   const StepCost& cost, size_t max_tries = 48, const EndCost& end_cost = {});
 
 }  // namespace tranche::toolpath

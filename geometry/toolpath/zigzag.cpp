@@ -210,20 +210,25 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
     open = std::move(next_open);
   }
 
-  // Runs to paths in bed coordinates.
-  auto to_xy = [&](UV p) {
-    return geo::Point(static_cast<coord_t>(std::llround(p.u * c - p.v * s)),
-                      static_cast<coord_t>(std::llround(p.u * s + p.v * c)));
+  // Runs to polylines, still in the rotated frame: each end remembers the ring edge it lies on.
+  struct End {
+    uint32_t ring, edge;
+    UV p;
   };
+  struct Poly {
+    std::vector<UV> pts;
+    std::vector<Border> border;  // per piece
+    End first, last;
+    double area = 0;  // units²
+    int runs = 1;
+  };
+  std::vector<Poly> polys;
+  polys.reserve(runs.size());
   for (const auto& run : runs) {
-    FillPath fp;
+    Poly P;
     auto add = [&](UV p, Border b) {
-      geo::Point q = to_xy(p);
-      if (!fp.pts.empty()) {
-        if (fp.pts.back() == q) return;
-        fp.border.push_back(b);
-      }
-      fp.pts.push_back(q);
+      if (!P.pts.empty()) P.border.push_back(b);
+      P.pts.push_back(p);
     };
     size_t li0 = run.last_line + 1 - run.iv.size();
     for (size_t k = 0; k < run.iv.size(); ++k) {
@@ -233,7 +238,12 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
       UV first{ltr ? iv.u0 : iv.u1, v}, last{ltr ? iv.u1 : iv.u0, v};
       add(first, k == 0 ? Border::None : border_of(rings[ltr ? iv.r0 : iv.r1].kinds[ltr ? iv.e0 : iv.e1]));
       add(last, Border::None);
-      if (k + 1 == run.iv.size()) break;
+      P.area += (iv.u1 - iv.u0) * pitch;
+      if (k == 0) P.first = {ltr ? iv.r0 : iv.r1, ltr ? iv.e0 : iv.e1, first};
+      if (k + 1 == run.iv.size()) {
+        P.last = {ltr ? iv.r1 : iv.r0, ltr ? iv.e1 : iv.e0, last};
+        break;
+      }
       // Connector from this line's end to the next line's start, along the ring.
       const Interval& nx = run.iv[k + 1];
       const auto& ring = rings[ltr ? iv.r1 : iv.r0];
@@ -246,6 +256,118 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
         add(ring.pts[vi], border_of(ring.kinds[edge]));
       }
     }
+    polys.push_back(std::move(P));
+  }
+
+  // Links along the border: the walk from `from` to `b` on their common ring, the shorter way
+  // round, if it is at most `limit` units long (points after `from`, up to and including `b`).
+  const double limit = spec.link_max_mm * geo::kUnitsPerMm;
+  auto walk = [&](const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds) {
+    constexpr double kNo = 1e300;
+    if (from.ring != b.ring || std::hypot(b.p.u - from.p.u, b.p.v - from.p.v) > limit) return kNo;
+    const Ring2& ring = rings[from.ring];
+    const uint32_t n = static_cast<uint32_t>(ring.pts.size());
+    auto param = [&](const End& e) {  // position along its edge, 0 at pts[edge], 1 at the next
+      const UV &p = ring.pts[e.edge], &q = ring.pts[(e.edge + 1) % n];
+      double du = q.u - p.u, dv = q.v - p.v, l2 = du * du + dv * dv;
+      return l2 > 0 ? ((e.p.u - p.u) * du + (e.p.v - p.v) * dv) / l2 : 0.0;
+    };
+    const double ta = param(from), tb = param(b);
+    double best = kNo;
+    for (int dir : {1, -1}) {
+      std::vector<UV> p;
+      std::vector<Border> k;
+      double len = 0;
+      UV at = from.p;
+      auto step = [&](UV to, uint32_t edge) {
+        len += std::hypot(to.u - at.u, to.v - at.v);
+        p.push_back(to);
+        k.push_back(border_of(ring.kinds[edge]));
+        at = to;
+      };
+      bool direct = from.edge == b.edge && (dir > 0 ? ta <= tb : ta >= tb);
+      uint32_t count = direct ? 0 : dir > 0 ? (b.edge + n - from.edge) % n : (from.edge + n - b.edge) % n;
+      if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
+      uint32_t e = from.edge;
+      for (uint32_t m = 0; m < count && len <= limit; ++m) {
+        if (dir > 0) {
+          e = (e + 1) % n;
+          step(ring.pts[e], (e + n - 1) % n);
+        } else {
+          step(ring.pts[e], e);
+          e = (e + n - 1) % n;
+        }
+      }
+      step(b.p, b.edge);
+      if (len <= limit && len < best) best = len, pts = std::move(p), kinds = std::move(k);
+    }
+    return best;
+  };
+  auto reverse = [](Poly& P) {
+    std::reverse(P.pts.begin(), P.pts.end());
+    std::reverse(P.border.begin(), P.border.end());
+    std::swap(P.first, P.last);
+  };
+  std::vector<Poly> chains;
+  if (limit > 0 && polys.size() > 1) {
+    std::vector<char> used(polys.size(), 0);
+    for (size_t i = 0; i < polys.size(); ++i) {
+      if (used[i]) continue;
+      used[i] = 1;
+      Poly cur = std::move(polys[i]);
+      for (int flipped = 0; flipped < 2;) {
+        double bl = 1e300;
+        size_t bj = 0;
+        bool bend = false;
+        std::vector<UV> bp, tp;
+        std::vector<Border> bk, tk;
+        for (size_t j = 0; j < polys.size(); ++j) {
+          if (used[j]) continue;
+          for (bool at_end : {false, true}) {
+            double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk);
+            if (l < bl) bl = l, bj = j, bend = at_end, bp = std::move(tp), bk = std::move(tk);
+          }
+        }
+        if (bl > limit) {  // nothing from this end: try the other one, once
+          reverse(cur);
+          ++flipped;
+          continue;
+        }
+        used[bj] = 1;
+        Poly& nx = polys[bj];
+        if (bend) reverse(nx);
+        // The walk ends on nx's first point.
+        cur.pts.insert(cur.pts.end(), bp.begin(), bp.end());
+        cur.border.insert(cur.border.end(), bk.begin(), bk.end());
+        cur.pts.insert(cur.pts.end(), nx.pts.begin() + 1, nx.pts.end());
+        cur.border.insert(cur.border.end(), nx.border.begin(), nx.border.end());
+        cur.last = nx.last;
+        cur.area += nx.area;
+        cur.runs += nx.runs;
+      }
+      chains.push_back(std::move(cur));
+    }
+  } else {
+    chains = std::move(polys);
+  }
+
+  // Polylines to paths in bed coordinates (points that round together merged).
+  auto to_xy = [&](UV p) {
+    return geo::Point(static_cast<coord_t>(std::llround(p.u * c - p.v * s)),
+                      static_cast<coord_t>(std::llround(p.u * s + p.v * c)));
+  };
+  for (const Poly& P : chains) {
+    FillPath fp;
+    for (size_t k = 0; k < P.pts.size(); ++k) {
+      geo::Point q = to_xy(P.pts[k]);
+      if (!fp.pts.empty()) {
+        if (fp.pts.back() == q) continue;
+        fp.border.push_back(P.border[k - 1]);
+      }
+      fp.pts.push_back(q);
+    }
+    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
+    fp.runs = P.runs;
     if (fp.pts.size() >= 2) out.push_back(std::move(fp));
   }
   return out;

@@ -1,7 +1,10 @@
 // Zig-zag fill: parallel lines at the fill angle, each pair of consecutive lines joined by a
 // connector that follows the shape's border between them, so a shape monotone with respect to
-// the fill direction (a cell) is filled by ONE continuous path with no travel. A shape that is
-// not monotone is filled by several zig-zags (one per run of connectable lines).
+// the fill direction is filled by ONE continuous path with no travel. A shape that is not
+// monotone is filled by several zig-zags, one per run of lines whose connectors stay between
+// them: the runs are the shape's monotone cells at the resolution of the lines (a notch
+// narrower than the pitch, which no line meets, does not cut the fill). Runs whose ends lie
+// close along the border are then joined by a link along it (FillSpec::link_max_mm).
 #pragma once
 
 #include <utility>
@@ -31,6 +34,10 @@ struct FillSpec {
   // do not lay beads on top of each other: line ends stop this far short of the cut along
   // the line (half a bead: the two round ends touch), connectors run this far·|sin θ| beside it.
   double artificial_inset_mm = 0.2;
+  // Runs that cannot be one zig-zag (the shape is not monotone at this pitch) are joined end to
+  // start by an extrusion along the shape's border when the walk along it is at most this long
+  // (mm; 0: never): an anchor, as the lines' own connectors are, instead of a travel.
+  double link_max_mm = 0;
 };
 
 // One continuous extrusion path: pts[i] -> pts[i+1] is piece i, border[i] says what it runs
@@ -38,6 +45,8 @@ struct FillSpec {
 struct FillPath {
   geo::Ring pts;  // open polyline (not closed)
   std::vector<schema::Border> border;
+  double area_mm2 = 0;  // area its lines fill: their length times the pitch
+  int runs = 1;         // zig-zags joined by links along the border
 };
 
 // Range [lo, hi] (mm) of v = −x·sin a + y·cos a over the rings: the extent across lines at

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <set>
 
@@ -195,6 +196,72 @@ SCENARIO("perimeters follow real borders only") {
           ++fills;
       }
       CHECK(fills > static_cast<int>(s.layers.size()));
+    }
+  }
+}
+
+SCENARIO("print order: infill first, running into the inner perimeter; the outer one last") {
+  test::TempDir dir("e2e-order");
+  auto is_fill = [](const std::string& t) { return t.find("infill") != std::string::npos; };
+  GIVEN("a 20 × 20 × 3 mm box with the defaults") {
+    auto s = slice(dir, "box", geo::box({20, 20, 3}), {{"skirt_loops", "0"}});
+    THEN("on every layer the infill comes first, the inner perimeter follows without a travel, "
+         "and the outer perimeter ends the layer") {
+      int layers = 0, linked = 0;
+      std::map<int, std::vector<const test::Move*>> by_layer;
+      for (const auto& m : s.gcode.moves)
+        if (m.layer >= 0 && m.has_xy) by_layer[m.layer].push_back(&m);
+      for (const auto& [layer, moves] : by_layer) {
+        ++layers;
+        std::string seen;  // kinds in print order: f(ill), p(erimeter), o(uter)
+        bool travel_since_fill = false;
+        for (const test::Move* m : moves) {
+          if (m->de <= 0) {
+            if (!seen.empty() && seen.back() == 'f') travel_since_fill = true;
+            continue;
+          }
+          char k = is_fill(m->type) ? 'f' : m->type == "Perimeter" ? 'p' : 'o';
+          if (k == 'p' && !seen.empty() && seen.back() == 'f' && !travel_since_fill) ++linked;
+          if (seen.empty() || seen.back() != k) seen += k;
+          if (k == 'f') travel_since_fill = false;
+        }
+        CHECK_MESSAGE(seen == "fpo", "layer ", layer);
+      }
+      CHECK(layers == 15);
+      CHECK(linked == layers);
+    }
+  }
+  GIVEN("the same box with infill_first = false") {
+    auto s = slice(dir, "box2", geo::box({20, 20, 3}), {{"skirt_loops", "0"}, {"infill_first", "false"}});
+    THEN("each layer starts with its perimeters, inner one first") {
+      std::map<int, std::string> first;
+      for (const auto& m : s.gcode.moves)
+        if (m.layer >= 0 && m.has_xy && m.de > 0 && !first.count(m.layer)) first[m.layer] = m.type;
+      CHECK(first.size() == 15);
+      for (const auto& [layer, type] : first) CHECK_MESSAGE(type == "Perimeter", "layer ", layer);
+    }
+  }
+  GIVEN("two boxes 10 mm apart") {
+    geo::Mesh m = geo::box({20, 20, 2});
+    geo::append(m, geo::translated(geo::box({20, 20, 2}), {30, 0, 0}));
+    auto s = slice(dir, "two", m, {{"skirt_loops", "0"}});
+    THEN("a layer starts on the box where the one below ended, so only the hop between the boxes "
+         "retracts") {
+      std::map<int, std::pair<double, double>> first_x, last_x;  // layer -> x of first / last extrusion
+      int retractions = 0;
+      for (const auto& mv : s.gcode.moves) {
+        if (mv.layer < 0) continue;
+        if (mv.has_e && !mv.has_xy && mv.de < 0) ++retractions;
+        if (!mv.has_xy || mv.de <= 0) continue;
+        if (!first_x.count(mv.layer)) first_x[mv.layer] = {mv.x, mv.y};
+        last_x[mv.layer] = {mv.x, mv.y};
+      }
+      REQUIRE(first_x.size() == 10);
+      for (int l = 1; l < 10; ++l) {
+        bool left_before = last_x[l - 1].first < 100, left_now = first_x[l].first < 100;
+        CHECK_MESSAGE(left_before == left_now, "layer ", l);
+      }
+      CHECK(retractions == 1 + 10);  // the arrival from the start G-code, then one hop per layer
     }
   }
 }

@@ -125,3 +125,22 @@ TEST_CASE("edge grid: hits are sorted along the segment and name their ring and 
   CHECK(h[0].edge != h[1].edge);
   CHECK(g.hits(to_point(1, 1), to_point(2, 2)).empty());
 }
+
+TEST_CASE("combing: the layer change steps in from a point just outside the layer") {
+  Comber c(geo::Rings{test::rect(0, 0, 20, 20)});
+  // Inside: the point itself.
+  auto in = c.enter(to_point(5, 5), 0.45);
+  REQUIRE(in);
+  CHECK(*in == to_point(5, 5));
+  // 0.2 mm outside the right side (the layer below's outer wall, where the wall slopes in): the
+  // nearest point of the material shrunk by its margin, a little further in.
+  auto near = c.enter(to_point(20.2, 10), 0.45);
+  REQUIRE(near);
+  CHECK(geo::to_mm(near->X) < 19.9);
+  CHECK(geo::to_mm(near->X) > 19.89);
+  CHECK(near->Y == to_point(0, 10).Y);
+  EdgeGrid shrunk(geo::Rings{test::rect(0.1, 0.1, 19.9, 19.9)});
+  CHECK(shrunk.inside(*near));
+  // Further than the tolerance: nothing (the travel leaves the part and retracts).
+  CHECK_FALSE(c.enter(to_point(21, 10), 0.45));
+}

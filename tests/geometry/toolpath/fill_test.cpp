@@ -218,3 +218,36 @@ TEST_CASE("perimeters: a thin island's parts narrower than the minimum feature a
   CHECK(geo::length_mm(l.ring) * s * l.flow_scale == doctest::Approx(3.0).epsilon(0.02));
   for (const auto& p : l.ring) CHECK(geo::to_mm(p.Y) < 0.31);
 }
+
+TEST_CASE("zig-zag: runs split by a notch are linked along the border when the walk is short") {
+  // A 10 x 10 square with a slot 0.6 mm wide and 6 mm deep cut down from the top at x = 5:
+  // horizontal lines above y = 4 meet two intervals, so the fill needs two runs.
+  geo::Ring slot{geo::to_point(0, 0),    geo::to_point(10, 0),   geo::to_point(10, 10),
+                 geo::to_point(5.3, 10), geo::to_point(5.3, 4),  geo::to_point(4.7, 4),
+                 geo::to_point(4.7, 10), geo::to_point(0, 10)};
+  FillSpec spec;
+  spec.angle_deg = 0;
+  spec.pitch_mm = 1.0;
+  auto apart = zigzag(fill_shape({slot}, geo::EdgeKind::Real), spec);
+  REQUIRE(apart.size() == 2);
+  double area = apart[0].area_mm2 + apart[1].area_mm2;
+  // The walk between the two runs' ends goes round the slot: about 2 × 6 + 0.6 mm at most.
+  spec.link_max_mm = 3.0;
+  CHECK(zigzag(fill_shape({slot}, geo::EdgeKind::Real), spec).size() == 2);  // too far
+  spec.link_max_mm = 14.0;
+  auto linked = zigzag(fill_shape({slot}, geo::EdgeKind::Real), spec);
+  REQUIRE(linked.size() == 1);
+  const auto& p = linked[0];
+  CHECK(p.runs == 2);
+  CHECK(p.area_mm2 == Approx(area));
+  REQUIRE(p.border.size() + 1 == p.pts.size());
+  // Every piece is a fill line (horizontal) or runs along the border, and stays in the shape.
+  EdgeGrid g(geo::Rings{slot});
+  for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+    const auto &a = p.pts[i], &b = p.pts[i + 1];
+    if (p.border[i] == schema::Border::None)
+      CHECK(a.Y == b.Y);
+    else
+      CHECK(g.along(a, b, 10));
+  }
+}
