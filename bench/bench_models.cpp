@@ -5,10 +5,18 @@
 //                                       base: the 0.4 mm below it (a 1.4 mm² sliver of a hole's rim,
 //                                       which PrusaSlicer refuses as a first layer with nothing to
 //                                       print) is cut off
+//   bench_models bunny_closed IN.stl OUT.stl  the same, with its holes capped: every boundary loop
+//                                       (the cut base and the scan's holes underneath) closed by
+//                                       a fan from its centroid, so that any slicer, and gcheck,
+//                                       reads one solid (the open one leaves each to its own guess)
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
@@ -51,6 +59,55 @@ geo::Mesh cut_below(const geo::Mesh& m, double c) {
   return out;
 }
 
+// Welds a triangle soup (exact duplicates) and closes every boundary loop by a fan from its
+// centroid. A boundary edge u -> v (no triangle has v -> u) gets the cap triangle v, u, c.
+geo::Mesh capped(const geo::Mesh& soup) {
+  geo::Mesh m;
+  m.name = soup.name;
+  std::map<std::tuple<double, double, double>, uint32_t> ids;
+  auto id = [&](const geo::Vec3& v) {
+    auto [it, fresh] = ids.try_emplace({v.x, v.y, v.z}, static_cast<uint32_t>(m.vertices.size()));
+    if (fresh) m.vertices.push_back(v);
+    return it->second;
+  };
+  for (const auto& t : soup.triangles) {
+    uint32_t a = id(soup.vertices[t[0]]), b = id(soup.vertices[t[1]]), c = id(soup.vertices[t[2]]);
+    if (a != b && b != c && c != a) m.triangles.push_back({a, b, c});
+  }
+  auto key = [](uint32_t u, uint32_t v) { return (uint64_t(u) << 32) | v; };
+  std::unordered_map<uint64_t, int> edges;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[key(t[k], t[(k + 1) % 3])];
+  std::unordered_map<uint32_t, uint32_t> next;  // boundary edges, u -> v
+  for (const auto& [e, count] : edges) {
+    uint32_t u = uint32_t(e >> 32), v = uint32_t(e & 0xffffffffu);
+    if (!edges.count(key(v, u))) next[u] = v;
+  }
+  size_t loops = 0;
+  while (!next.empty()) {
+    std::vector<uint32_t> loop{next.begin()->first};
+    while (true) {
+      auto it = next.find(loop.back());
+      if (it == next.end()) break;
+      uint32_t v = it->second;
+      next.erase(it);
+      if (v == loop.front()) break;
+      loop.push_back(v);
+    }
+    if (loop.size() < 3) continue;
+    geo::Vec3 c{0, 0, 0};
+    for (uint32_t v : loop) c = {c.x + m.vertices[v].x, c.y + m.vertices[v].y, c.z + m.vertices[v].z};
+    const double n = static_cast<double>(loop.size());
+    auto ci = static_cast<uint32_t>(m.vertices.size());
+    m.vertices.push_back({c.x / n, c.y / n, c.z / n});
+    for (size_t i = 0; i < loop.size(); ++i)
+      m.triangles.push_back({loop[(i + 1) % loop.size()], loop[i], ci});
+    ++loops;
+  }
+  std::printf("capped %zu holes\n", loops);
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,7 +117,7 @@ int main(int argc, char** argv) {
     int m = argc == 5 ? std::atoi(argv[3]) : 1280, n = argc == 5 ? std::atoi(argv[4]) : 320;
     return write(argv[2], geo::translated(geo::torus(40, 15, m, n), {0, 0, 15}));
   }
-  if (cmd == "bunny" && argc == 4) {
+  if ((cmd == "bunny" || cmd == "bunny_closed") && argc == 4) {
     Report report;
     auto mesh = geo::load_stl(argv[2], report);
     if (!mesh) {
@@ -71,8 +128,10 @@ int main(int argc, char** argv) {
     const double base = mesh->bbox().min.z + 0.4;
     geo::Mesh cut = cut_below(*mesh, base);
     cut.transform(1.0, {0, 0, -base});
-    return write(argv[3], cut);
+    return write(argv[3], cmd == "bunny" ? cut : capped(cut));
   }
-  std::fprintf(stderr, "usage: bench_models plate OUT.stl | torus OUT.stl [M N] | bunny IN.stl OUT.stl\n");
+  std::fprintf(
+      stderr,
+      "usage: bench_models plate OUT.stl | torus OUT.stl [M N] | bunny|bunny_closed IN.stl OUT.stl\n");
   return 2;
 }

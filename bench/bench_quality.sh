@@ -4,7 +4,8 @@
 # re-slices the STL), and prints one table: gcheck's verdict and coverages, plastic volume
 # against PrusaSlicer's, travel moves and retractions, and tranche's ratios to each peer.
 #   bench/bench_quality.sh [BUILD_DIR]
-#   env: MODELS="torus cone ..." (default: PrusaSlicer's shapes, the Stanford bunny, a plate with
+#   env: MODELS="torus cone ..." (default: PrusaSlicer's shapes, the Stanford bunny as published
+#        (its base open) and with its holes capped (bench_models bunny_closed), a plate with
 #        holes), SLICERS="tranche tranche_comb prusa cura", GCHECK=path/to/gcheck.py, OUT=dir to
 #        keep files. tranche_comb (tranche with CuraEngine's retraction policy) is only counted.
 set -uo pipefail
@@ -18,7 +19,7 @@ if [[ ! -f $GCHECK ]]; then
   exit 1
 fi
 SLICERS=${SLICERS:-tranche tranche_comb prusa cura}
-MODELS=${MODELS:-bunny torus M3_hex_nut M3x10_screw sphere cone stanford_bunny plate_holes}
+MODELS=${MODELS:-bunny torus M3_hex_nut M3x10_screw sphere cone stanford_bunny stanford_bunny_closed plate_holes}
 out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-quality-XXXXXX")}
 [[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
 mkdir -p "$out"

@@ -38,7 +38,7 @@ def row(name, slicer, js, gcode):
 
 def table(path):
     rows = [l.rstrip('\n').split('\t') for l in open(path) if l.strip()]
-    widths = [14, 12, 8, 6, 6, 8, 6, 8, 7, 10, 8, 8, 6]
+    widths = [21, 12, 8, 6, 6, 8, 6, 8, 7, 10, 8, 8, 6]
     print(' '.join(c.ljust(w) for c, w in zip(COLS + ['vol/prusa'], widths + [9])))
     by = {}
     for r in rows:
@@ -46,7 +46,7 @@ def table(path):
     for model, sl in by.items():
         for s, r in sl.items():
             if len(r) < len(COLS):
-                print(f'{model:<14} {s:<12} {" ".join(r[2:])}')
+                print(f'{model:<21} {s:<12} {" ".join(r[2:])}')
                 continue
             ref = sl.get('prusa')
             rel = f'{float(r[9]) / float(ref[9]):.3f}' if ref and len(ref) >= len(COLS) and float(ref[9]) > 0 else '-'

@@ -39,6 +39,9 @@ bench_models() {
   if ! fresh "$d/stanford_bunny.stl" && [[ -f "$stl_models/objects/bunny.bin.stl" ]]; then
     "$BENCH_MODELS" bunny "$stl_models/objects/bunny.bin.stl" "$d/stanford_bunny.stl" >/dev/null
   fi
+  if ! fresh "$d/stanford_bunny_closed.stl" && [[ -f "$stl_models/objects/bunny.bin.stl" ]]; then
+    "$BENCH_MODELS" bunny_closed "$stl_models/objects/bunny.bin.stl" "$d/stanford_bunny_closed.stl" >/dev/null
+  fi
   local shapes=/usr/share/PrusaSlicer/shapes
   local name path
   while read -r name path; do
@@ -53,6 +56,7 @@ M3x10_screw $shapes/M3x10_screw.stl
 sphere $shapes/sphere.stl
 cone $shapes/cone.stl
 stanford_bunny $d/stanford_bunny.stl
+stanford_bunny_closed $d/stanford_bunny_closed.stl
 plate_holes $d/plate_holes.stl
 torus819k $d/torus819k.stl
 EOM

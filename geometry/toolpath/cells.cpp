@@ -1,14 +1,15 @@
 #include "geometry/toolpath/cells.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::toolpath {
 
-namespace {
-constexpr geo::coord_t kOnBorderTol = 20;  // units (20 nm): Clipper rounding of shared edges
-}  // namespace
-
-FillShape region_shape(const geo::Rings& region, const EdgeGrid& fill_border) {
+FillShape region_shape(const geo::Rings& region, const std::vector<const EdgeGrid*>& borders,
+                       double on_border_mm) {
+  const auto tol = static_cast<geo::coord_t>(std::llround(on_border_mm * geo::kUnitsPerMm));
   FillShape s;
   if (region.empty()) return s;
   ClipperLib::Clipper clip;
@@ -19,8 +20,11 @@ FillShape region_shape(const geo::Rings& region, const EdgeGrid& fill_border) {
     if (ring.size() < 3) continue;
     std::vector<geo::EdgeKind> kinds(ring.size());
     for (size_t i = 0; i < ring.size(); ++i)
-      kinds[i] = fill_border.along(ring[i], ring[(i + 1) % ring.size()], kOnBorderTol) ? geo::EdgeKind::Real
-                                                                                      : geo::EdgeKind::Artificial;
+      kinds[i] =
+          std::any_of(borders.begin(), borders.end(),
+                      [&](const EdgeGrid* b) { return b->along(ring[i], ring[(i + 1) % ring.size()], tol); })
+              ? geo::EdgeKind::Real
+              : geo::EdgeKind::Artificial;
     s.rings.push_back(std::move(ring));
     s.kinds.push_back(std::move(kinds));
   }

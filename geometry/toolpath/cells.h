@@ -4,14 +4,20 @@
 // monotone pieces at the resolution of the fill lines (docs/gcode.md, "Cells").
 #pragma once
 
+#include <vector>
+
 #include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/zigzag.h"
 
 namespace tranche::toolpath {
 
-// `region`: rings of one fill region (non-zero fill); `fill_border`: edges of the whole fill
-// region of the island. The rings come out of a union: outer counter-clockwise, holes clockwise,
-// none overlapping.
-FillShape region_shape(const geo::Rings& region, const EdgeGrid& fill_border);
+// `region`: rings of one fill region (non-zero fill); `borders`: the island's fill border (the
+// edges of its whole fill region, and of that region grown as solid regions are). The rings come out of a
+// union: outer counter-clockwise, holes clockwise, none overlapping. An edge within `on_border_mm` of the
+// fill border is real: between it and the border there is at most a sliver no other region's lines fill
+// (regions are built by booleans with the neighbouring layers and rounded by openings, so their edges along
+// the border are rarely exactly on it), and its line ends must reach the border.
+FillShape region_shape(const geo::Rings& region, const std::vector<const EdgeGrid*>& borders,
+                       double on_border_mm);
 
 }  // namespace tranche::toolpath

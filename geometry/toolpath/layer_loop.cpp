@@ -161,7 +161,8 @@ class LayerTask {
   Status layer_level();
   Status skirt_level();
   Status island_level(const geo::Island& src, int index, IslandPlan& ip);
-  Status cell_level(IslandPlan& ip, const FillRegion& region, const EdgeGrid& border, double angle);
+  Status cell_level(IslandPlan& ip, const FillRegion& region, const std::vector<const EdgeGrid*>& borders,
+                    double angle);
   void order(IslandPlan& ip, geo::Point& pos);
   Status path_level(IslandPlan* ip, PathPlan& p);
   Status piece_level(PathPlan& p);
@@ -395,13 +396,18 @@ Status LayerTask::island_content(IslandPlan& ip) {
     if (wide.empty()) wide = offset(per.fill_region, reach);
     region.rings = intersection(offset(region.rings, reach), wide);
   }
-  EdgeGrid border(wide.empty() ? per.fill_region : union_of(per.fill_region, wide));
+  // The island's fill border: where sparse regions meet the perimeters, and (grown) where solid
+  // ones do.
+  EdgeGrid fill_grid(per.fill_region), wide_grid(wide);
+  std::vector<const EdgeGrid*> borders{&fill_grid};
+  if (!wide.empty()) borders.push_back(&wide_grid);
   for (const FillRegion& region : regions)
-    if (Status s = cell_level(ip, region, border, angle); !s) return s;
+    if (Status s = cell_level(ip, region, borders, angle); !s) return s;
   return ok_status();
 }
 
-Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const EdgeGrid& border, double angle) {
+Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region,
+                             const std::vector<const EdgeGrid*>& borders, double angle) {
   const bool solid = region.kind != PathKind::Infill;
   auto props = plan_path_props(ip.props, region.kind, -1);
   if (!props) return props.error();
@@ -426,7 +432,8 @@ Status LayerTask::cell_level(IslandPlan& ip, const FillRegion& region, const Edg
   // 2 / 8 / 16 beads leave 5192 / 4529 / 4228 trips.
   fs.link_max_mm = solid ? 16 * s : 5 * fs.pitch_mm;
   // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.
-  for (FillPath& fp : zigzag(region_shape(region.rings, border), fs)) {
+  // Edges within a quarter bead of the island's fill border are on it (see region_shape).
+  for (FillPath& fp : zigzag(region_shape(region.rings, borders, 0.25 * w), fs)) {
     CellPlan cell;
     cell.index = static_cast<int>(ip.cells.size());
     cell.area_mm2 = fp.area_mm2;

@@ -222,6 +222,50 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
     double area = 0;  // units²
     int runs = 1;
   };
+  // Stretches of each ring that links lie on, as (start, length) in arc length from the ring's
+  // vertex 0, forward: a link may not run over another one. (It may run over the lines' own
+  // connectors, as PrusaSlicer's infill anchors do: along the island's border a solid link and
+  // connector are both laid at half flow.)
+  const double limit = spec.link_max_mm * geo::kUnitsPerMm;
+  struct Stretch {
+    double start, len;
+  };
+  std::vector<std::vector<double>> cum(rings.size());  // arc length at each vertex, then the total
+  std::vector<std::vector<Stretch>> covered(rings.size());
+  if (limit > 0)
+    for (size_t r = 0; r < rings.size(); ++r) {
+      const auto& pts = rings[r].pts;
+      cum[r].assign(1, 0.0);
+      for (size_t i = 0; i < pts.size(); ++i) {
+        const UV &p0 = pts[i], &p1 = pts[(i + 1) % pts.size()];
+        cum[r].push_back(cum[r].back() + std::hypot(p1.u - p0.u, p1.v - p0.v));
+      }
+    }
+  auto param = [&](uint32_t r, uint32_t edge, UV x) {  // along the edge: 0 at its start, 1 at its end
+    const auto& pts = rings[r].pts;
+    const UV &p = pts[edge], &q = pts[(edge + 1) % pts.size()];
+    double du = q.u - p.u, dv = q.v - p.v, l2 = du * du + dv * dv;
+    return l2 > 0 ? std::clamp(((x.u - p.u) * du + (x.v - p.v) * dv) / l2, 0.0, 1.0) : 0.0;
+  };
+  auto arc = [&](uint32_t r, uint32_t edge, UV x) {
+    return cum[r][edge] + param(r, edge, x) * (cum[r][edge + 1] - cum[r][edge]);
+  };
+  // The stretch walked from a to b (forward: increasing vertex indices), `whole` when the walk
+  // goes all the way round.
+  auto stretch = [&](uint32_t r, double sa, double sb, bool forward, bool whole) {
+    const double L = cum[r].back();
+    double from = forward ? sa : sb, to = forward ? sb : sa;
+    double len = whole ? L : std::fmod(to - from + L, L);
+    return Stretch{from, len};
+  };
+  auto overlaps = [&](uint32_t r, const Stretch& x) {
+    const double L = cum[r].back(), eps = 1e3;  // 1 µm
+    for (const Stretch& other : covered[r]) {
+      if (std::fmod(other.start - x.start + L, L) < x.len - eps) return true;
+      if (std::fmod(x.start - other.start + L, L) < other.len - eps) return true;
+    }
+    return false;
+  };
   std::vector<Poly> polys;
   polys.reserve(runs.size());
   for (const auto& run : runs) {
@@ -260,21 +304,24 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
   }
 
   // Links along the border: the walk from `from` to `b` on their common ring, the shorter way
-  // round, if it is at most `limit` units long (points after `from`, up to and including `b`).
-  const double limit = spec.link_max_mm * geo::kUnitsPerMm;
-  auto walk = [&](const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds) {
+  // round of those that run over no other link, if it is at most `limit` units long (points
+  // after `from`, up to and including `b`; `st`: the stretch it covers).
+  auto walk = [&](const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
+                  Stretch& st) {
     constexpr double kNo = 1e300;
     if (from.ring != b.ring || std::hypot(b.p.u - from.p.u, b.p.v - from.p.v) > limit) return kNo;
-    const Ring2& ring = rings[from.ring];
+    const uint32_t r = from.ring;
+    const Ring2& ring = rings[r];
     const uint32_t n = static_cast<uint32_t>(ring.pts.size());
-    auto param = [&](const End& e) {  // position along its edge, 0 at pts[edge], 1 at the next
-      const UV &p = ring.pts[e.edge], &q = ring.pts[(e.edge + 1) % n];
-      double du = q.u - p.u, dv = q.v - p.v, l2 = du * du + dv * dv;
-      return l2 > 0 ? ((e.p.u - p.u) * du + (e.p.v - p.v) * dv) / l2 : 0.0;
-    };
-    const double ta = param(from), tb = param(b);
+    const double ta = param(r, from.edge, from.p), tb = param(r, b.edge, b.p);
+    const double sa = arc(r, from.edge, from.p), sb = arc(r, b.edge, b.p);
     double best = kNo;
     for (int dir : {1, -1}) {
+      bool direct = from.edge == b.edge && (dir > 0 ? ta <= tb : ta >= tb);
+      uint32_t count = direct ? 0 : dir > 0 ? (b.edge + n - from.edge) % n : (from.edge + n - b.edge) % n;
+      if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
+      Stretch here = stretch(r, sa, sb, dir > 0, count == n);
+      if (here.len > limit || overlaps(r, here)) continue;
       std::vector<UV> p;
       std::vector<Border> k;
       double len = 0;
@@ -285,9 +332,6 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
         k.push_back(border_of(ring.kinds[edge]));
         at = to;
       };
-      bool direct = from.edge == b.edge && (dir > 0 ? ta <= tb : ta >= tb);
-      uint32_t count = direct ? 0 : dir > 0 ? (b.edge + n - from.edge) % n : (from.edge + n - b.edge) % n;
-      if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
       uint32_t e = from.edge;
       for (uint32_t m = 0; m < count && len <= limit; ++m) {
         if (dir > 0) {
@@ -299,7 +343,7 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
         }
       }
       step(b.p, b.edge);
-      if (len <= limit && len < best) best = len, pts = std::move(p), kinds = std::move(k);
+      if (len <= limit && len < best) best = len, pts = std::move(p), kinds = std::move(k), st = here;
     }
     return best;
   };
@@ -321,11 +365,12 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
         bool bend = false;
         std::vector<UV> bp, tp;
         std::vector<Border> bk, tk;
+        Stretch bs{0, 0}, ts{0, 0};
         for (size_t j = 0; j < polys.size(); ++j) {
           if (used[j]) continue;
           for (bool at_end : {false, true}) {
-            double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk);
-            if (l < bl) bl = l, bj = j, bend = at_end, bp = std::move(tp), bk = std::move(tk);
+            double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts);
+            if (l < bl) bl = l, bj = j, bend = at_end, bp = std::move(tp), bk = std::move(tk), bs = ts;
           }
         }
         if (bl > limit) {  // nothing from this end: try the other one, once
@@ -334,6 +379,7 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
           continue;
         }
         used[bj] = 1;
+        covered[cur.last.ring].push_back(bs);
         Poly& nx = polys[bj];
         if (bend) reverse(nx);
         // The walk ends on nx's first point.

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "fixtures.h"
 #include "geometry/toolpath/cells.h"
 #include "geometry/toolpath/clip.h"
-#include "fixtures.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
@@ -52,7 +52,7 @@ TEST_CASE("cells: regions whose rings touch are filled whole, inside, in few zig
     Region r = read_region(e.path());
     REQUIRE_FALSE(r.rings.empty());
     EdgeGrid border(r.rings);
-    FillShape shape = region_shape(r.rings, border);
+    FillShape shape = region_shape(r.rings, {&border}, 0.1);
     REQUIRE_FALSE(shape.rings.empty());
     for (const auto& k : shape.kinds)
       for (auto kind : k) CHECK(kind == geo::EdgeKind::Real);  // the whole border is the island's
@@ -84,7 +84,7 @@ TEST_CASE("cells: regions whose rings touch are filled whole, inside, in few zig
 TEST_CASE("cells: an edge is artificial where it is not on the island's fill border") {
   // The island's fill region is the 10 x 10 square; this region is its left half.
   EdgeGrid border(geo::Rings{test::rect(0, 0, 10, 10)});
-  FillShape shape = region_shape({test::rect(0, 0, 5, 10)}, border);
+  FillShape shape = region_shape({test::rect(0, 0, 5, 10)}, {&border}, 0.1);
   REQUIRE(shape.rings.size() == 1);
   int artificial = 0;
   const auto& ring = shape.rings[0];
@@ -95,4 +95,49 @@ TEST_CASE("cells: an edge is artificial where it is not on the island's fill bor
     artificial += inner;
   }
   CHECK(artificial == 1);
+  // With solid regions in the island, its border is also the fill region grown by a quarter
+  // bead: a sparse region (not grown) still meets the perimeters on the fill region's edges.
+  EdgeGrid wide(offset(geo::Rings{test::rect(0, 0, 10, 10)}, 0.1125));
+  FillShape both = region_shape({test::rect(0, 0, 5, 10)}, {&border, &wide}, 0.1125);
+  REQUIRE(both.rings.size() == 1);
+  CHECK(both.kinds[0] == shape.kinds[0]);
+}
+
+TEST_CASE("cells: a solid region grown into the perimeters has its whole outer edge real") {
+  // As the fill stage builds solid regions: from booleans with the neighbouring layers, grown by
+  // a quarter bead, clipped to the fill region grown as much. Where the region meets the
+  // island's fill border, its edges come from different polygons that agree to within a few
+  // micrometres; labelled with a tolerance of nanometres, they alternated real and artificial,
+  // and the zig-zag's connectors (artificial edges are inset) became a saw that laid 1.65 times
+  // the plastic on a sphere's second layer.
+  geo::Ring circle;
+  for (int i = 0; i < 90; ++i)
+    circle.push_back(geo::to_point(5 * std::cos(i * M_PI / 45), 5 * std::sin(i * M_PI / 45)));
+  geo::Rings fill{circle};
+  const double reach = 0.1;
+  geo::Rings wide = offset(fill, reach);
+  // The region: the left half, as the layer below (the same circle turned by 2°, its vertices
+  // mid-edge of this one's, up to 3 µm further out) cuts it.
+  geo::Ring below;
+  for (int i = 0; i < 90; ++i) {
+    double t = i * M_PI / 45 + M_PI / 90;
+    below.push_back(geo::to_point(5 * std::cos(t), 5 * std::sin(t)));
+  }
+  geo::Rings left = intersection(intersection(fill, {below}), {test::rect(-6, -6, 0, 6)});
+  geo::Rings region = intersection(offset(left, reach), wide);
+  EdgeGrid fill_grid(fill), wide_grid(wide);
+  FillShape shape = region_shape(region, {&fill_grid, &wide_grid}, 0.1);
+  REQUIRE(shape.rings.size() == 1);
+  const auto& ring = shape.rings[0];
+  int on_border = 0, real = 0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const auto &a = ring[i], &b = ring[(i + 1) % ring.size()];
+    // Both ends on the grown circle (radius 5.1 mm, within a micrometre and its chords' sag).
+    auto r = [](const geo::Point& p) { return std::hypot(geo::to_mm(p.X), geo::to_mm(p.Y)); };
+    if (std::abs(r(a) - 5.1) > 0.01 || std::abs(r(b) - 5.1) > 0.01 || geo::to_mm(a.X) > -0.2) continue;
+    ++on_border;
+    real += shape.kinds[0][i] == geo::EdgeKind::Real;
+  }
+  CHECK(on_border > 20);
+  CHECK(real == on_border);
 }
