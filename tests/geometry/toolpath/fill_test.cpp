@@ -1,6 +1,9 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
@@ -222,9 +225,8 @@ TEST_CASE("perimeters: a thin island's parts narrower than the minimum feature a
 TEST_CASE("zig-zag: runs split by a notch are linked along the border when the walk is short") {
   // A 10 x 10 square with a slot 0.6 mm wide and 6 mm deep cut down from the top at x = 5:
   // horizontal lines above y = 4 meet two intervals, so the fill needs two runs.
-  geo::Ring slot{geo::to_point(0, 0),    geo::to_point(10, 0),   geo::to_point(10, 10),
-                 geo::to_point(5.3, 10), geo::to_point(5.3, 4),  geo::to_point(4.7, 4),
-                 geo::to_point(4.7, 10), geo::to_point(0, 10)};
+  geo::Ring slot{geo::to_point(0, 0),   geo::to_point(10, 0),  geo::to_point(10, 10),  geo::to_point(5.3, 10),
+                 geo::to_point(5.3, 4), geo::to_point(4.7, 4), geo::to_point(4.7, 10), geo::to_point(0, 10)};
   FillSpec spec;
   spec.angle_deg = 0;
   spec.pitch_mm = 1.0;
@@ -250,4 +252,59 @@ TEST_CASE("zig-zag: runs split by a notch are linked along the border when the w
     else
       CHECK(g.along(a, b, 10));
   }
+}
+
+TEST_CASE("zig-zag: on a ring, links join the runs round the hole, each stretch of border walked once") {
+  // A ring (r 1.2 to 2.5 mm) at 45°: every line meets two intervals round the hole, and the
+  // short runs are joined by links along the border, none over another (a link may run over the
+  // lines' connectors, never over a link).
+  auto circle = [](double r, bool ccw) {
+    geo::Ring c;
+    for (int i = 0; i < 72; ++i) {
+      double t = (ccw ? 1 : -1) * i * M_PI / 36;
+      c.push_back(geo::to_point(r * std::cos(t), r * std::sin(t)));
+    }
+    return c;
+  };
+  geo::Rings ring{circle(2.5, true), circle(1.2, false)};
+  FillSpec spec;
+  spec.angle_deg = 45;
+  spec.pitch_mm = 0.42;
+  // The pieces along the border without links: the connectors.
+  using Piece = std::pair<std::pair<long long, long long>, std::pair<long long, long long>>;
+  auto pieces = [](const std::vector<FillPath>& paths) {
+    std::multiset<Piece> out;
+    for (const auto& p : paths)
+      for (size_t i = 0; i + 1 < p.pts.size(); ++i) {
+        if (p.border[i] == schema::Border::None) continue;
+        std::pair<long long, long long> a{p.pts[i].X, p.pts[i].Y};
+        std::pair<long long, long long> b{p.pts[i + 1].X, p.pts[i + 1].Y};
+        out.insert(a < b ? Piece{a, b} : Piece{b, a});
+      }
+    return out;
+  };
+  auto connectors = pieces(zigzag(fill_shape(ring, geo::EdgeKind::Real), spec));
+  spec.link_max_mm = 16 * 0.42;
+  auto paths = zigzag(fill_shape(ring, geo::EdgeKind::Real), spec);
+  size_t runs = 0;
+  for (const auto& p : paths) runs += static_cast<size_t>(p.runs);
+  CHECK(paths.size() < runs);  // some runs were joined
+  // The links: the pieces along the border that are not connectors. Each edge of either circle
+  // is covered by at most one link.
+  auto all = pieces(paths);
+  for (const auto& c : connectors) {
+    auto it = all.find(c);
+    if (it != all.end()) all.erase(it);
+  }
+  REQUIRE_FALSE(all.empty());
+  std::map<std::pair<int, int>, int> cover;  // (circle, edge) -> links along it
+  for (const auto& [a, b] : all) {
+    double mx = geo::kMmPerUnit * 0.5 * double(a.first + b.first),
+           my = geo::kMmPerUnit * 0.5 * double(a.second + b.second);
+    int which = std::hypot(mx, my) > 1.85 ? 0 : 1;
+    double t = std::atan2(my, mx);
+    int edge = ((static_cast<int>(std::floor(t / (M_PI / 36))) % 72) + 72) % 72;
+    ++cover[{which, edge}];
+  }
+  for (const auto& [edge, n] : cover) CHECK_MESSAGE(n <= 1, "circle ", edge.first, " edge ", edge.second);
 }
