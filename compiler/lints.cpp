@@ -220,28 +220,54 @@ void lint(const ast::Program& program, diag::Sink& sink) {
       }
     }
 
-    // W201: every slot taken by later rules wherever this rule matches.
+    // W201: every slot taken by later rules wherever this rule matches. W213: some of them.
     if (r.slots.empty() || !facts[i].boxes || facts[i].boxes->empty()) continue;
     std::vector<size_t> shadowers;
+    struct Lost {
+      const ast::Slot* slot;
+      std::vector<size_t> by;
+    };
+    std::vector<Lost> lost;
     bool shadowed = true;
+    std::set<uint32_t> seen_slots;
     for (const auto& slot : r.slots) {
+      if (!seen_slots.insert(slot.key()).second) continue;  // set twice in the rule: W208
       // Latest first: a rule that still finds part of the region uncovered is the one that wins
       // there, so the rules named are exactly those that take the slot from this one.
       const Takers& t = takers[slot.key()];
       size_t later = static_cast<size_t>(
           std::partition_point(t.rules.begin(), t.rules.end(), [&](size_t j) { return j > i; }) -
           t.rules.begin());
-      if (later == 0) {
-        shadowed = false;
-        break;
-      }
       std::vector<size_t> used;
-      auto proof = prover::covered(*facts[i].boxes, std::span(t.filters.data(), later), space, &used);
+      auto proof = later == 0 ? std::optional<bool>(false)
+                              : prover::covered(*facts[i].boxes, std::span(t.filters.data(), later), space, &used);
       if (!proof || !*proof) {
         shadowed = false;
-        break;
+        continue;
       }
-      for (size_t u : used) shadowers.push_back(t.rules[u]);
+      Lost l{&slot, {}};
+      for (size_t u : used) shadowers.push_back(t.rules[u]), l.by.push_back(t.rules[u]);
+      lost.push_back(std::move(l));
+    }
+    if (!shadowed) {
+      for (Lost& l : lost) {
+        std::sort(l.by.begin(), l.by.end());
+        l.by.erase(std::unique(l.by.begin(), l.by.end()), l.by.end());
+        const auto& at = l.slot->action ? l.slot->action->span : r.span;
+        auto& d = sink.warning("W213", at,
+                               fmt::format("{} in rule {} never takes effect", l.slot->describe(), r.display(sources)),
+                               "always overridden by later rules");
+        for (size_t k = 0; k < l.by.size() && k < 4; ++k) {
+          const Rule& s = *rules[l.by[k]];
+          d.label(s.span, fmt::format("{} sets it too", s.display(sources)));
+        }
+        if (l.by.size() > 4) d.note(fmt::format("and {} more rules", l.by.size() - 4));
+        d.note(fmt::format("wherever this rule matches, later rules also set {}: the last match wins; the "
+                           "rule's other settings still apply",
+                           l.slot->describe()));
+        d.help("remove this setting, or move the rule after the ones that override it");
+      }
+      continue;
     }
     if (!shadowed) continue;
     std::sort(shadowers.begin(), shadowers.end());
