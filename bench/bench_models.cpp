@@ -11,15 +11,14 @@
 //                                       reads one solid (the open one leaves each to its own guess)
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <string>
 #include <string_view>
-#include <tuple>
 #include <unordered_map>
 #include <vector>
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
+#include "geometry/mesh/weld.h"
 
 using namespace tranche;
 
@@ -59,21 +58,23 @@ geo::Mesh cut_below(const geo::Mesh& m, double c) {
   return out;
 }
 
-// Welds a triangle soup (exact duplicates) and closes every boundary loop by a fan from its
-// centroid. A boundary edge u -> v (no triangle has v -> u) gets the cap triangle v, u, c.
+// Welds a triangle soup (geo::Welder, as STL loading does) and closes every boundary loop by a
+// fan from its centroid. A boundary edge u -> v (no triangle has v -> u) gets the cap triangle
+// v, u, c.
 geo::Mesh capped(const geo::Mesh& soup) {
   geo::Mesh m;
   m.name = soup.name;
-  std::map<std::tuple<double, double, double>, uint32_t> ids;
-  auto id = [&](const geo::Vec3& v) {
-    auto [it, fresh] = ids.try_emplace({v.x, v.y, v.z}, static_cast<uint32_t>(m.vertices.size()));
-    if (fresh) m.vertices.push_back(v);
-    return it->second;
-  };
-  for (const auto& t : soup.triangles) {
-    uint32_t a = id(soup.vertices[t[0]]), b = id(soup.vertices[t[1]]), c = id(soup.vertices[t[2]]);
-    if (a != b && b != c && c != a) m.triangles.push_back({a, b, c});
-  }
+  std::vector<float> corners;
+  corners.reserve(9 * soup.triangles.size());
+  for (const auto& t : soup.triangles)
+    for (uint32_t id : t) {
+      const geo::Vec3& v = soup.vertices[id];
+      corners.insert(corners.end(), {float(v.x), float(v.y), float(v.z)});
+    }
+  std::vector<uint8_t> dropped(soup.triangles.size());
+  geo::Welder welder(soup.triangles.size());
+  welder.add(corners.data(), soup.triangles.size(), dropped.data());
+  welder.finish(m);
   auto key = [](uint32_t u, uint32_t v) { return (uint64_t(u) << 32) | v; };
   std::unordered_map<uint64_t, int> edges;
   for (const auto& t : m.triangles)

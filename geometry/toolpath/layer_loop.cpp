@@ -237,13 +237,15 @@ Status LayerTask::layer_level() {
   std::vector<size_t> seq;
   {
     std::vector<char> used(plan_.islands.size(), 0);
+    std::vector<geo::BBox2> boxes;
+    for (const auto& ip : plan_.islands) boxes.push_back(bbox(ip.shape));
     geo::Point at = pos;
     for (size_t step = 0; step < plan_.islands.size(); ++step) {
       double bd = 1e300;
       size_t bi = 0;
       for (size_t i = 0; i < plan_.islands.size(); ++i) {
         if (used[i]) continue;
-        geo::BBox2 b = bbox(plan_.islands[i].shape);
+        const geo::BBox2& b = boxes[i];
         double dx = std::max<double>({0.0, double(b.min_x - at.X), double(at.X - b.max_x)});
         double dy = std::max<double>({0.0, double(b.min_y - at.Y), double(at.Y - b.max_y)});
         double d = b.empty() ? 1e299 : dx * dx + dy * dy;
@@ -251,7 +253,7 @@ Status LayerTask::layer_level() {
       }
       used[bi] = 1;
       seq.push_back(bi);
-      geo::BBox2 b = bbox(plan_.islands[bi].shape);
+      const geo::BBox2& b = boxes[bi];
       if (!b.empty()) at = geo::Point((b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2);
     }
   }

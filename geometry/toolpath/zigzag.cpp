@@ -53,6 +53,22 @@ struct Interval {
   uint32_t e0, e1;  // edges of the left and right ends
 };
 
+// Walking round a ring of n vertices from a point on edge `from` (forward: increasing indices),
+// `count` vertices: calls f(vertex, edge just walked along) for each, and stops early, returning
+// false, when f does. `steps` counts the vertices between a point on edge `from` and one on edge
+// `to` (0 on the same edge).
+uint32_t steps(uint32_t n, uint32_t from, uint32_t to, bool forward) {
+  return forward ? (to + n - from) % n : (from + n - to) % n;
+}
+template <class F>
+bool walk_ring(uint32_t n, uint32_t from, uint32_t count, bool forward, F&& f) {
+  for (uint32_t k = 0; k < count; ++k) {
+    uint32_t v = forward ? (from + 1 + k) % n : (from + n - k) % n;
+    if (!f(v, forward ? (v + n - 1) % n : v)) return false;
+  }
+  return true;
+}
+
 Border border_of(EdgeKind k) { return k == EdgeKind::Real ? Border::Real : Border::Artificial; }
 
 // Moves every artificial edge inward (to the left) by `d`; vertices go to the intersection of
@@ -175,12 +191,8 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
     const auto& pts = rings[ring].pts;
     uint32_t n = static_cast<uint32_t>(pts.size());
     uint32_t e_from = right ? from.e1 : from.e0, e_to = right ? to.e1 : to.e0;
-    uint32_t steps = right ? (e_to + n - e_from) % n : (e_from + n - e_to) % n;
-    for (uint32_t k = 0; k < steps; ++k) {
-      uint32_t vi = right ? (e_from + 1 + k) % n : (e_from + n - k) % n;
-      if (pts[vi].v < v0 - 1 || pts[vi].v > v1 + 1) return false;
-    }
-    return true;
+    return walk_ring(n, e_from, steps(n, e_from, e_to, right), right,
+                     [&](uint32_t v, uint32_t) { return pts[v].v >= v0 - 1 && pts[v].v <= v1 + 1; });
   };
   for (size_t li = 0; li < lines.size(); ++li) {
     auto& h = hits[li];
@@ -293,12 +305,10 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
       const auto& ring = rings[ltr ? iv.r1 : iv.r0];
       uint32_t n = static_cast<uint32_t>(ring.pts.size());
       uint32_t e_from = ltr ? iv.e1 : iv.e0, e_to = ltr ? nx.e1 : nx.e0;
-      uint32_t steps = ltr ? (e_to + n - e_from) % n : (e_from + n - e_to) % n;
-      for (uint32_t t = 0; t < steps; ++t) {
-        uint32_t vi = ltr ? (e_from + 1 + t) % n : (e_from + n - t) % n;
-        uint32_t edge = ltr ? (vi + n - 1) % n : vi;  // the edge just walked along
+      walk_ring(n, e_from, steps(n, e_from, e_to, ltr), ltr, [&](uint32_t vi, uint32_t edge) {
         add(ring.pts[vi], border_of(ring.kinds[edge]));
-      }
+        return true;
+      });
     }
     polys.push_back(std::move(P));
   }
@@ -318,7 +328,7 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
     double best = kNo;
     for (int dir : {1, -1}) {
       bool direct = from.edge == b.edge && (dir > 0 ? ta <= tb : ta >= tb);
-      uint32_t count = direct ? 0 : dir > 0 ? (b.edge + n - from.edge) % n : (from.edge + n - b.edge) % n;
+      uint32_t count = direct ? 0 : steps(n, from.edge, b.edge, dir > 0);
       if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
       Stretch here = stretch(r, sa, sb, dir > 0, count == n);
       if (here.len > limit || overlaps(r, here)) continue;
@@ -332,16 +342,10 @@ std::vector<FillPath> zigzag(const FillShape& shape, const FillSpec& spec) {
         k.push_back(border_of(ring.kinds[edge]));
         at = to;
       };
-      uint32_t e = from.edge;
-      for (uint32_t m = 0; m < count && len <= limit; ++m) {
-        if (dir > 0) {
-          e = (e + 1) % n;
-          step(ring.pts[e], (e + n - 1) % n);
-        } else {
-          step(ring.pts[e], e);
-          e = (e + n - 1) % n;
-        }
-      }
+      walk_ring(n, from.edge, count, dir > 0, [&](uint32_t v, uint32_t edge) {
+        step(ring.pts[v], edge);
+        return len <= limit;
+      });
       step(b.p, b.edge);
       if (len <= limit && len < best) best = len, pts = std::move(p), kinds = std::move(k), st = here;
     }

@@ -189,22 +189,24 @@ TEST_CASE("docs/guide.md: every rules block checks as documented") {
   CHECK(replacer);  // the tutorial goes as far as a replacer
 }
 
-TEST_CASE("docs/language.md: the Fields table is the schema's") {
+namespace {
+// The table of docs/language.md that follows `heading` reads `want`.
+void check_table(const std::string& heading, const std::string& want, const std::string& what) {
   std::string md = read(test::source_dir() / "docs" / "language.md");
-  std::string want = fields_table();
-  CHECK_MESSAGE(table_after(md, "\n## Fields\n") == want, "docs/language.md, ## Fields, should read:\n\n" << want);
+  CHECK_MESSAGE(table_after(md, heading) == want, "docs/language.md, " << what << ", should read:\n\n" << want);
+}
+}  // namespace
+
+TEST_CASE("docs/language.md: the Fields table is the schema's") {
+  check_table("\n## Fields\n", fields_table(), "## Fields");
 }
 
 TEST_CASE("docs/language.md: the Properties table is the schema's") {
-  std::string md = read(test::source_dir() / "docs" / "language.md");
-  std::string want = properties_table();
-  CHECK_MESSAGE(table_after(md, "\n## Properties\n") == want, "docs/language.md, ## Properties, should read:\n\n" << want);
+  check_table("\n## Properties\n", properties_table(), "## Properties");
 }
 
 TEST_CASE("docs/language.md: the enum table is the schema's") {
-  std::string md = read(test::source_dir() / "docs" / "language.md");
-  std::string want = enums_table();
-  CHECK_MESSAGE(table_after(md, "\n| enum | values |\n") == want, "docs/language.md, the enum table, should read:\n\n" << want);
+  check_table("\n| enum | values |\n", enums_table(), "the enum table");
 }
 
 TEST_CASE("docs/language.md: every unit and context level of the schema is described") {
