@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/output_file.h"
 #include "compiler/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/codegen.h"
@@ -244,23 +245,11 @@ int build(const Args& a) {
   }
   std::string bytes = vm::write_bundle(*p, a.debug);
   // Written next to the target, then renamed: never a half-written bundle.
-  namespace fs = std::filesystem;
-  fs::path out(a.output), tmp = out;
-  tmp += ".tmp";
-  {
-    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-    if (!file || !file.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) || !file.flush()) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      std::fprintf(stderr, "rulec: error: cannot write %s\n", a.output.c_str());
-      return 1;
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, out, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    std::fprintf(stderr, "rulec: error: cannot write %s: %s\n", a.output.c_str(), ec.message().c_str());
+  auto file = OutputFile::create(a.output, "the bundle");
+  Status written = file ? file->write(bytes) : Status(file.error());
+  if (written) written = file->commit();
+  if (!written) {
+    std::fprintf(stderr, "rulec: error: %s\n", written.error().to_string().c_str());
     return 1;
   }
   print_times(a, f);

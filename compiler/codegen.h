@@ -8,7 +8,7 @@
 #pragma once
 
 #include "compiler/ast/ast.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 #include "runtime/vm/program.h"
 
 namespace tranche::compiler {

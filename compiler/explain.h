@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "compiler/ast/ast.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 #include "runtime/vm/vm.h"
 
 namespace tranche::compiler {

@@ -9,7 +9,7 @@
 
 #include "compiler/check.h"
 #include "compiler/names.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::compiler {
 

@@ -13,7 +13,7 @@
 
 #include "geometry/gcode/layer_text.h"
 #include "geometry/gcode/numbers.h"
-#include "geometry/gcode/output_file.h"
+#include "base/output_file.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/context_fill.h"
 #include "geometry/toolpath/flow.h"
@@ -63,7 +63,7 @@ class PrintWriter final : public ctx::LineSink {
   Result<GcodeSummary> run() {
     if (job_.layers.empty()) return Error{job_.model_name, "nothing to print: the model has no layers"};
     if (Status s = decide_print(); !s) return s.error();
-    auto file = OutputFile::create(job_.output);
+    auto file = OutputFile::create(job_.output, "the G-code");
     if (!file) return file.error();
     file_ = std::make_unique<OutputFile>(std::move(*file));
     if (Status s = header(); !s) return s.error();

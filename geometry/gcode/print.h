@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "geometry/core/layer.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 #include "runtime/context/hooks.h"
 
 namespace tranche::gcode {

@@ -5,7 +5,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/io/export_file.h"
+#include "base/output_file.h"
+#include "geometry/io/text_out.h"
 
 namespace tranche::geo {
 namespace {
@@ -72,7 +73,7 @@ void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
 
 Status write_layers_json(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
                          const std::function<void(size_t)>& progress) {
-  auto file = OutputFile::open(path);
+  auto file = OutputFile::create(path, "the layer export");
   if (!file) return file.error();
   fmt::memory_buffer head;
   fmt::format_to(std::back_inserter(head),

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "geometry/core/layer.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

@@ -5,7 +5,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/io/export_file.h"
+#include "base/output_file.h"
+#include "geometry/io/text_out.h"
 
 namespace tranche::geo {
 namespace {
@@ -110,7 +111,7 @@ void append_layer(fmt::memory_buffer& out, const Layer& layer, size_t slot, cons
 
 Status write_layers_svg(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
                         const std::function<void(size_t)>& progress) {
-  auto file = OutputFile::open(path);
+  auto file = OutputFile::create(path, "the SVG export");
   if (!file) return file.error();
   const Sheet s = layout(layers);
   const double width = static_cast<double>(s.cols) * s.cell_w,

@@ -10,8 +10,8 @@
 
 #include "geometry/core/geom.h"
 #include "geometry/io/svg_paint.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

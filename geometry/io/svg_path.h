@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo::svg {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geometry/io/svg_style.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo::svg {
 

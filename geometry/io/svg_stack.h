@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "geometry/io/svg_source.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo::svg {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geometry/io/svg_path.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo::svg {
 

@@ -15,6 +15,7 @@
 #include <new>
 #include <system_error>
 
+#include "base/output_file.h"
 #include "geometry/mesh/stl_parse.h"
 #include "geometry/mesh/weld.h"
 
@@ -290,29 +291,10 @@ Status write_stl_binary(const std::string& path, const Mesh& mesh) {
     const double vals[12] = {nrm.x, nrm.y, nrm.z, a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
     for (int k = 0; k < 12; ++k) put_float(p + 4 * k, vals[k]);
   }
-  // Write a temporary file beside the target and rename it, so a failure never leaves half a file.
-  std::string tmp = path + ".tmp-XXXXXX";
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) return Error{path, "cannot write: " + errno_text(errno)};
-  size_t done = 0;
-  while (done < out.size()) {
-    const ssize_t n = ::write(fd, out.data() + done, out.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = n < 0 ? errno : EIO;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      return Error{path, "cannot write: " + errno_text(err)};
-    }
-    done += static_cast<size_t>(n);
-  }
-  ::fchmod(fd, 0644);
-  if (::close(fd) != 0 || ::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    return Error{path, "cannot write: " + errno_text(err)};
-  }
-  return ok_status();
+  auto file = OutputFile::create(path, "the STL file");
+  if (!file) return file.error();
+  if (Status s = file->write(out); !s) return s;
+  return file->commit();
 }
 
 }  // namespace tranche::geo

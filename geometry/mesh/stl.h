@@ -5,8 +5,8 @@
 #include <string_view>
 
 #include "geometry/mesh/mesh.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo::stl {
 

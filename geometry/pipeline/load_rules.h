@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 #include "runtime/vm/vm.h"
 
 namespace tranche::pipeline {

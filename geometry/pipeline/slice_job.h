@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::pipeline {
 

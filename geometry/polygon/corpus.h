@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "geometry/polygon/resolve.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

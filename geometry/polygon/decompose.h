@@ -4,8 +4,8 @@
 #pragma once
 
 #include "geometry/core/layer.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

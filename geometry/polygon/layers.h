@@ -8,8 +8,8 @@
 #include "geometry/core/layer.h"
 #include "geometry/polygon/decompose.h"
 #include "geometry/polygon/resolve.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geometry/core/layer.h"
-#include "runtime/base/result.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

@@ -11,8 +11,8 @@
 #include "geometry/core/layer.h"
 #include "geometry/mesh/mesh.h"
 #include "geometry/slice/topology.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 
 namespace tranche::geo {
 

@@ -11,8 +11,8 @@
 #include "geometry/core/layer.h"
 #include "geometry/toolpath/motion.h"
 #include "geometry/toolpath/plan.h"
-#include "runtime/base/report.h"
-#include "runtime/base/result.h"
+#include "base/report.h"
+#include "base/result.h"
 #include "runtime/context/hooks.h"
 
 namespace tranche::toolpath {

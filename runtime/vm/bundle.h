@@ -33,7 +33,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/base/result.h"
+#include "base/result.h"
 #include "runtime/vm/program.h"
 
 namespace tranche::vm {

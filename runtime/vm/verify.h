@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "runtime/base/result.h"
+#include "base/result.h"
 #include "runtime/vm/program.h"
 
 namespace tranche::vm {

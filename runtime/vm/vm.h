@@ -28,7 +28,7 @@
 #include <memory>
 #include <vector>
 
-#include "runtime/base/result.h"
+#include "base/result.h"
 #include "runtime/context/hooks.h"
 #include "runtime/vm/program.h"
 

@@ -7,7 +7,6 @@
 
 #include "geometry/gcode/layer_text.h"
 #include "geometry/gcode/numbers.h"
-#include "geometry/gcode/output_file.h"
 #include "geometry/gcode/print.h"
 #include "runtime/context/defaults.h"
 #include "runtime/context/overrides.h"
@@ -62,33 +61,6 @@ TEST_CASE("fan commands per flavour") {
   CHECK(fan_command(schema::Flavor::Klipper, 0.5) == "M106 S128");
   CHECK(fan_command(schema::Flavor::RepRapFirmware, 0.5) == "M106 P0 S0.5");
   CHECK(fan_command(schema::Flavor::RepRapFirmware, 0.0) == "M106 P0 S0");
-}
-
-TEST_CASE("output file: nothing at the destination until commit; no leftovers on failure") {
-  test::TempDir dir("gcode-out");
-  fs::path dest = dir / "out.gcode";
-  {
-    auto f = OutputFile::create(dest.string());
-    REQUIRE(f.ok());
-    REQUIRE(f->write("; header 0000\n").ok());
-    CHECK_FALSE(fs::exists(dest));
-    CHECK(fs::exists(f->temp_path()));
-  }  // destroyed without commit
-  CHECK_FALSE(fs::exists(dest));
-  CHECK(fs::is_empty(dir.path()));
-  {
-    auto f = OutputFile::create(dest.string());
-    REQUIRE(f.ok());
-    REQUIRE(f->write("; header 0000\n").ok());
-    REQUIRE(f->write(std::string(3 << 20, 'x')).ok());  // beyond the buffer: patch must reach the file
-    REQUIRE(f->patch(9, "1234").ok());
-    REQUIRE(f->commit().ok());
-  }
-  CHECK(read(dest).substr(0, 14) == "; header 1234\n");
-  CHECK(fs::file_size(dest) == 14 + (3u << 20));
-  auto bad = OutputFile::create((dir / "missing" / "x.gcode").string());
-  REQUIRE_FALSE(bad.ok());
-  CHECK(bad.error().message.find("does not exist") != std::string::npos);
 }
 
 // A file the tests read locally but git ignores is missing from every clean clone (CI broke so,

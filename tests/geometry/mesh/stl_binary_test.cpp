@@ -263,7 +263,7 @@ TEST_CASE("write_stl_binary: failures leave no file and say why") {
   geo::Mesh m = two_cubes();
   auto st = geo::write_stl_binary("/nonexistent/dir/out.stl", m);
   REQUIRE(!st.ok());
-  CHECK(has(st.error().message, "No such file or directory"));
+  CHECK(has(st.error().message, "the folder '/nonexistent/dir' does not exist"));
 
   TempDir dir("stl-write");
   const std::string path = (dir / "bad.stl").string();

@@ -1,4 +1,4 @@
-#include "runtime/base/report.h"
+#include "base/report.h"
 
 namespace tranche {
 

@@ -1,57 +1,6 @@
-#include "geometry/io/export_file.h"
-
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
+#include "geometry/io/text_out.h"
 
 namespace tranche::geo {
-
-Result<OutputFile> OutputFile::open(const std::string& path) {
-  static std::atomic<int> counter{0};
-  std::string temp = fmt::format("{}.tmp-{}-{}", path, ::getpid(), counter++);
-  std::FILE* f = std::fopen(temp.c_str(), "wb");
-  if (!f)
-    return Error{path, fmt::format("cannot write here: {}; check that the folder exists and is writable",
-                                   std::strerror(errno))};
-  std::setvbuf(f, nullptr, _IOFBF, 1 << 20);
-  return OutputFile(path, std::move(temp), f);
-}
-
-OutputFile::OutputFile(OutputFile&& other) noexcept
-    : path_(std::move(other.path_)), temp_(std::move(other.temp_)), f_(other.f_) {
-  other.f_ = nullptr;
-  other.temp_.clear();
-}
-
-OutputFile::~OutputFile() {
-  if (f_) std::fclose(f_);
-  if (!temp_.empty()) std::remove(temp_.c_str());
-}
-
-Status OutputFile::write(std::string_view bytes) {
-  if (!f_) return Error{path_, "write after the file was closed"};
-  if (std::fwrite(bytes.data(), 1, bytes.size(), f_) != bytes.size())
-    return Error{path_, fmt::format("write failed: {}", std::strerror(errno))};
-  return ok_status();
-}
-
-Status OutputFile::commit() {
-  if (!f_) return Error{path_, "file already closed"};
-  const bool flushed = std::fflush(f_) == 0;
-  const int flush_errno = errno;
-  const bool closed = std::fclose(f_) == 0;
-  f_ = nullptr;
-  if (!flushed || !closed)
-    return Error{path_, fmt::format("write failed: {}", std::strerror(flushed ? errno : flush_errno))};
-  std::error_code ec;
-  std::filesystem::rename(temp_, path_, ec);
-  if (ec) return Error{path_, fmt::format("cannot replace the file: {}", ec.message())};
-  temp_.clear();
-  return ok_status();
-}
 
 void append_mm(fmt::memory_buffer& out, coord_t units) {
   // Integer arithmetic: a decimal printed this way reads back to the same nanometre.

@@ -1,4 +1,4 @@
-#include "geometry/gcode/output_file.h"
+#include "base/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,13 +9,13 @@
 #include <cstring>
 #include <filesystem>
 
-namespace tranche::gcode {
+namespace tranche {
 
 namespace {
 constexpr size_t kBuffer = 1 << 20;
 }
 
-Result<OutputFile> OutputFile::create(const std::string& path) {
+Result<OutputFile> OutputFile::create(const std::string& path, std::string what) {
   namespace fs = std::filesystem;
   fs::path dest(path);
   fs::path dir = dest.has_parent_path() ? dest.parent_path() : fs::path(".");
@@ -25,17 +25,17 @@ Result<OutputFile> OutputFile::create(const std::string& path) {
     msg.append(dir.string()).append("' does not exist; create it or choose another output path");
     return Error{path, msg};
   }
-  if (fs::is_directory(dest, ec)) return Error{path, "is a folder; give a file name for the G-code"};
+  if (fs::is_directory(dest, ec)) return Error{path, "is a folder; give a file name for " + what};
   std::string name = ".";
   name.append(dest.filename().string()).append(".tmp-XXXXXX");
   std::string tmpl = (dir / name).string();
   int fd = mkstemp(tmpl.data());
   if (fd < 0) return Error{path, std::string("cannot write in this folder: ").append(std::strerror(errno))};
-  return OutputFile(fd, path, tmpl);
+  return OutputFile(fd, path, tmpl, std::move(what));
 }
 
-OutputFile::OutputFile(int fd, std::string path, std::string tmp)
-    : fd_(fd), path_(std::move(path)), tmp_(std::move(tmp)) {
+OutputFile::OutputFile(int fd, std::string path, std::string tmp, std::string what)
+    : fd_(fd), path_(std::move(path)), tmp_(std::move(tmp)), what_(std::move(what)) {
   buf_.reserve(kBuffer);
 }
 
@@ -43,6 +43,7 @@ OutputFile::OutputFile(OutputFile&& o) noexcept
     : fd_(o.fd_),
       path_(std::move(o.path_)),
       tmp_(std::move(o.tmp_)),
+      what_(std::move(o.what_)),
       buf_(std::move(o.buf_)),
       written_(o.written_),
       committed_(o.committed_) {
@@ -67,7 +68,7 @@ Status OutputFile::flush() {
     ssize_t n = ::write(fd_, buf_.data() + done, buf_.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      return fail("cannot write the G-code");
+      return fail("cannot write " + what_);
     }
     done += static_cast<size_t>(n);
   }
@@ -98,21 +99,21 @@ Status OutputFile::patch(uint64_t at, std::string_view bytes) {
   }
   if (Status s = flush(); !s) return s;
   if (::pwrite(fd_, bytes.data(), bytes.size(), static_cast<off_t>(at)) != static_cast<ssize_t>(bytes.size()))
-    return fail("cannot update the G-code header");
+    return fail("cannot update " + what_);
   return ok_status();
 }
 
 Status OutputFile::commit() {
   if (Status s = flush(); !s) return s;
-  if (::fchmod(fd_, 0644) != 0) return fail("cannot set the G-code's permissions");
+  if (::fchmod(fd_, 0644) != 0) return fail("cannot set the permissions of " + what_);
   if (::close(fd_) != 0) {
     fd_ = -1;
-    return fail("cannot finish writing the G-code");
+    return fail("cannot finish writing " + what_);
   }
   fd_ = -1;
-  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) return fail("cannot move the G-code into place");
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) return fail("cannot move " + what_ + " into place");
   committed_ = true;
   return ok_status();
 }
 
-}  // namespace tranche::gcode
+}  // namespace tranche
