@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "base/output_file.h"
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/codegen.h"
 #include "compiler/diagnostics.h"

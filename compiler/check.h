@@ -1,10 +1,10 @@
 // The checker: resolves names, types, units and stages of a loaded program and fills the
-// checked fields of its AST (compiler/ast/ast.h); then the lints. Codes are listed in
+// checked fields of its AST (grammar/ast/ast.h); then the lints. Codes are listed in
 // docs/diagnostics.md.
 #pragma once
 
-#include "compiler/ast/ast.h"
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/ast.h"
+#include "grammar/ast/diagnostic.h"
 
 namespace tranche::compiler {
 

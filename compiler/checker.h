@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/ast.h"
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/ast.h"
+#include "grammar/ast/diagnostic.h"
 
 namespace tranche::compiler {
 

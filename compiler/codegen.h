@@ -7,7 +7,7 @@
 // candidates in descending rule order, so the VM stops at the first (last written) match.
 #pragma once
 
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 #include "base/result.h"
 #include "runtime/vm/program.h"
 

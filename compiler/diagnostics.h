@@ -1,4 +1,4 @@
-// Rendering diagnostics (compiler/ast/diagnostic.h) for people and for tools.
+// Rendering diagnostics (grammar/ast/diagnostic.h) for people and for tools.
 //
 // Text, in the rustc/clang style: header with the code, `-->` location, the source line with
 // `^^^` under the primary span and `---` under secondary ones, then `= note:` and `= help:`.
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/diagnostic.h"
-#include "compiler/ast/source.h"
+#include "grammar/ast/diagnostic.h"
+#include "grammar/ast/source.h"
 
 namespace tranche::compiler {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 #include "base/result.h"
 #include "runtime/vm/vm.h"
 

@@ -18,8 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "compiler/ast/ast.h"
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/ast.h"
+#include "grammar/ast/diagnostic.h"
 #include "grammar/parse.h"
 
 namespace tranche::compiler {

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 
 namespace tranche::compiler::prover {
 

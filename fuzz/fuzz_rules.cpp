@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/diagnostics.h"
 #include "compiler/frontend.h"

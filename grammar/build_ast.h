@@ -3,8 +3,8 @@
 #pragma once
 
 #include "RulesBaseVisitor.h"
-#include "compiler/ast/ast.h"
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/ast.h"
+#include "grammar/ast/diagnostic.h"
 #include "grammar/input.h"
 #include "grammar/parse.h"
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/diagnostic.h"
 #include "grammar/input.h"
 
 namespace tranche::grammar {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/source.h"
+#include "grammar/ast/source.h"
 
 namespace tranche::grammar {
 

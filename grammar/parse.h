@@ -1,12 +1,12 @@
-// The rule-language parser: source text → AST (compiler/ast/ast.h). ANTLR stays behind this
+// The rule-language parser: source text → AST (grammar/ast/ast.h). ANTLR stays behind this
 // header. Lexical and syntax errors become diagnostics (E0001–E0007); a file with any of them
 // yields no items, so the checker never sees a half-parsed file.
 #pragma once
 
 #include <cstdint>
 
-#include "compiler/ast/ast.h"
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/ast.h"
+#include "grammar/ast/diagnostic.h"
 
 namespace tranche::grammar {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/diagnostic.h"
 #include "grammar/input.h"
 #include "grammar/parse.h"
 

@@ -46,7 +46,7 @@ TEST_CASE(
   fs::path root = tranche::test::source_dir();
   std::set<std::string> emitted;
   std::regex code_re("\"([EW][0-9]{3,4})\"");
-  for (const char* dir : {"compiler", "grammar", "compiler/ast"}) {
+  for (const char* dir : {"compiler", "grammar", "grammar/ast"}) {
     for (const auto& e : fs::directory_iterator(root / dir)) {
       if (e.path().extension() != ".cpp") continue;
       std::string src = read(e.path());

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/frontend.h"
 

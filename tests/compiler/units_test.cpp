@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "compiler/ast/types.h"
+#include "grammar/ast/types.h"
 
 using tranche::ast::parse_unit;
 using tranche::ast::Type;

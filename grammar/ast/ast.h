@@ -41,8 +41,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/ast/source.h"
-#include "compiler/ast/types.h"
+#include "grammar/ast/source.h"
+#include "grammar/ast/types.h"
 #include "runtime/schema/schema.h"
 
 namespace tranche::ast {

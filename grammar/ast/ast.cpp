@@ -1,4 +1,4 @@
-#include "compiler/ast/ast.h"
+#include "grammar/ast/ast.h"
 
 #include <fmt/format.h>
 

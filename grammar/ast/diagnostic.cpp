@@ -1,4 +1,4 @@
-#include "compiler/ast/diagnostic.h"
+#include "grammar/ast/diagnostic.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "compiler/ast/source.h"
+#include "grammar/ast/source.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "compiler/ast/types.h"
+#include "grammar/ast/types.h"
 
 #include <fmt/format.h>
 #include <cstdlib>
