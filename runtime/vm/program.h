@@ -29,16 +29,9 @@
 #include <vector>
 
 #include "runtime/schema/schema.h"
+#include "runtime/vm/opcodes.h"
 
 namespace tranche::vm {
-
-enum class Op : uint8_t {
-#define TRANCHE_OP(Name, mnemonic, A, B, C, D, Class) Name,
-#include "runtime/vm/opcodes.def"
-#undef TRANCHE_OP
-  Count_
-};
-inline constexpr int kOpCount = static_cast<int>(Op::Count_);
 
 struct Instr {
   uint8_t op = 0;
@@ -55,16 +48,6 @@ struct Instr {
 };
 static_assert(sizeof(Instr) == 8);
 
-// Operand kinds and opcode classes of opcodes.def.
-enum class Operand : uint8_t { None, Reg, Const, Field, Prop, Jump, String, Rule, Enum, Coll, Member,
-                               Decimals, LayerOffset, MoveFlags };
-enum class OpClass : uint8_t { Expr, Stmt, Repl, Term };
-struct OpInfo {
-  const char* mnemonic;
-  Operand a, b, c, d;
-  OpClass cls;
-};
-const OpInfo& op_info(Op op);
 
 // Collections a `for` loop walks (operand C).
 enum class Coll : uint8_t { Points, Pieces, Islands };

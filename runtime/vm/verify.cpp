@@ -8,32 +8,6 @@ namespace tranche::vm {
 
 namespace {
 
-constexpr Operand kind_of(char c) {
-  switch (c) {
-    case 'R': return Operand::Reg;
-    case 'K': return Operand::Const;
-    case 'F': return Operand::Field;
-    case 'P': return Operand::Prop;
-    case 'J': return Operand::Jump;
-    case 'S': return Operand::String;
-    case 'N': return Operand::Rule;
-    case 'E': return Operand::Enum;
-    case 'C': return Operand::Coll;
-    case 'M': return Operand::Member;
-    case 'D': return Operand::Decimals;
-    case 'O': return Operand::LayerOffset;
-    case 'X': return Operand::MoveFlags;
-    default: return Operand::None;
-  }
-}
-
-#define TRANCHE_OP(Name, mnemonic, A, B, C, D, Class) \
-  OpInfo{mnemonic, kind_of(#A[0]), kind_of(#B[0]), kind_of(#C[0]), kind_of(#D[0]), OpClass::Class},
-const OpInfo kOps[] = {
-#include "runtime/vm/opcodes.def"
-};
-#undef TRANCHE_OP
-static_assert(sizeof(kOps) / sizeof(kOps[0]) == kOpCount);
 
 const char* kind_name(ChunkKind k) {
   switch (k) {
@@ -117,7 +91,7 @@ class Verifier {
       const Instr& in = p_.code[ch.start + i];
       std::string at = fmt::format("{}, instruction {}", where, i);
       if (in.op >= kOpCount) return fail(at, fmt::format("unknown opcode {}", in.op));
-      const OpInfo& info = kOps[in.op];
+      const OpInfo& info = op_info(in.code());
       bool allowed = info.cls == OpClass::Expr ||
                      (info.cls == OpClass::Stmt && (ch.kind == ChunkKind::Hook || ch.kind == ChunkKind::Replace)) ||
                      (info.cls == OpClass::Repl && ch.kind == ChunkKind::Replace);
@@ -134,7 +108,7 @@ class Verifier {
       if (in.code() == Op::MoveTo && move_options(in.c) > 0 && in.d + move_options(in.c) > ch.regs)
         return fail(at, "move options out of the chunk's registers");
     }
-    if (kOps[p_.code[ch.start + ch.size - 1].op].cls != OpClass::Term)
+    if (op_info(p_.code[ch.start + ch.size - 1].code()).cls != OpClass::Term)
       return fail(where, "does not end with a return or halt");
     return ok_status();
   }
@@ -242,8 +216,6 @@ class Verifier {
 };
 
 }  // namespace
-
-const OpInfo& op_info(Op op) { return kOps[static_cast<size_t>(op)]; }
 
 Status verify(const Program& program) { return Verifier(program).run(); }
 
