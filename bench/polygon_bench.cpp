@@ -16,7 +16,7 @@
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/polygon/layers.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
 
@@ -71,7 +71,7 @@ int run(int argc, char** argv) {
   double slice_s = 1e300, resolve_s = 1e300, decompose_s = 1e300;
   std::vector<Layer> layers;
   for (int r = 0; r < runs; ++r) {
-    auto planned = plan_layers(mesh->bbox().max.z, {});
+    auto planned = plan_layer_heights(mesh->bbox().max.z, {});
     if (!planned) return fail(planned.error().to_string());
     layers = std::move(*planned);
     Report rep;

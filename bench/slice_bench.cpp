@@ -20,7 +20,7 @@
 #include "geometry/io/svg_export.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
@@ -86,7 +86,7 @@ int run(int argc, char** argv) {
   const double t_load = since(t);
 
   t = Clock::now();
-  auto layers = plan_layers(b.max.z - b.min.z, {});
+  auto layers = plan_layer_heights(b.max.z - b.min.z, {});
   if (!layers) return fail(layers.error().to_string());
   const double t_plan = since(t);
 

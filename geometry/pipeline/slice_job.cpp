@@ -16,7 +16,7 @@
 #include "geometry/pipeline/progress.h"
 #include "geometry/polygon/decompose.h"
 #include "geometry/polygon/layers.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
 #include "geometry/pipeline/load_rules.h"
@@ -102,11 +102,11 @@ Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report
     }
     return layers;
   }
-  geo::LayerPlanParams params;
+  geo::LayerHeightParams params;
   const int n = o.svg_layers > 0 ? o.svg_layers : 10;
   const double height =
       o.svg_height_mm > 0 ? o.svg_height_mm : params.first_layer_height + (n - 1) * params.layer_height;
-  auto planned = geo::plan_layers(height, params);
+  auto planned = geo::plan_layer_heights(height, params);
   if (!planned) return Error{o.model, planned.error().to_string()};
   const geo::Rings loops = geo::to_rings(model->layers[0].polygons);
   for (auto& l : *planned) l.loops = loops;
@@ -193,10 +193,10 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
 }
 
 // Layer heights from the cascade (layer_height, first_layer_height, --set).
-Result<geo::LayerPlanParams> layer_heights(const ctx::Cascade& cascade, const ctx::Context& print, Status& error) {
+Result<geo::LayerHeightParams> layer_heights(const ctx::Cascade& cascade, const ctx::Context& print, Status& error) {
   auto props = cascade.print_props(print);
   if (!props) return props.error();
-  geo::LayerPlanParams params;
+  geo::LayerHeightParams params;
   params.height = [&cascade, print, p = *props, &error](int index, double z_bottom) {
     auto h = cascade.layer_height(print, p, index, z_bottom);
     if (!h) {
@@ -277,7 +277,7 @@ Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
   Status height_error = ok_status();
   auto heights = layer_heights(**cascade, print, height_error);
   if (!heights) return heights.error();
-  auto layers = geo::plan_layers(box.max.z, *heights);
+  auto layers = geo::plan_layer_heights(box.max.z, *heights);
   if (!height_error) return height_error.error();
   if (!layers) return Error{options.model, layers.error().to_string()};
 

@@ -58,7 +58,7 @@ struct SliceStats {
   size_t open_loops = 0;   // chains closed on themselves across a wider gap ("open-loop" warnings)
 };
 
-// Fills layers[i].loops for every planned layer (bottom to top, as from plan_layers), cutting
+// Fills layers[i].loops for every planned layer (bottom to top, as from plan_layer_heights), cutting
 // the mesh at each layer's z_slice(). Loops are in integer units (geom.h), counter-clockwise
 // around material and clockwise around holes, following the mesh's winding. A chain that cannot
 // be closed within the gap tolerance is closed on itself with a straight edge and reported as an

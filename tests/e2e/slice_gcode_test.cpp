@@ -14,7 +14,7 @@
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/slice_job.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
@@ -58,7 +58,7 @@ Sliced slice(const test::TempDir& dir, const std::string& name, const geo::Mesh&
   geo::Mesh m = mesh;
   auto b = m.bbox();
   m.transform(1.0, {0, 0, -b.min.z});
-  auto layers = geo::plan_layers(b.max.z - b.min.z, {});
+  auto layers = geo::plan_layer_heights(b.max.z - b.min.z, {});
   REQUIRE(layers.ok());
   Report r2;
   REQUIRE(geo::slice_mesh(m, geo::build_topology(m), *layers, {}, r2).ok());

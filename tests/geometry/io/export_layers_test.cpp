@@ -15,7 +15,7 @@
 #include "geometry/io/text_out.h"
 #include "geometry/io/layers_json.h"
 #include "geometry/mesh/primitives.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "tests/support/fixtures.h"
@@ -146,7 +146,7 @@ std::string read(const std::filesystem::path& p) {
 }
 
 std::vector<Layer> sliced(const Mesh& mesh) {
-  auto plan = plan_layers(mesh.bbox().max.z, {});
+  auto plan = plan_layer_heights(mesh.bbox().max.z, {});
   REQUIRE(plan.ok());
   Report r;
   REQUIRE(slice_mesh(mesh, *plan, {}, r).ok());

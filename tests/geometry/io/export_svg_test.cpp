@@ -9,7 +9,7 @@
 
 #include "geometry/io/svg_export.h"
 #include "geometry/mesh/primitives.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "tests/support/fixtures.h"
@@ -44,7 +44,7 @@ SCENARIO("the SVG contact sheet of a sliced model") {
   test::TempDir dir("svg");
   Mesh m = plate_with_holes(30, 20, 1, 3, 2, 3, 16);
   append(m, translated(cylinder(4, 2, 24), {40, 10, 0}));  // a second island, taller than the plate
-  auto plan = plan_layers(m.bbox().max.z, {});
+  auto plan = plan_layer_heights(m.bbox().max.z, {});
   REQUIRE(plan.ok());
   Report r;
   REQUIRE(slice_mesh(m, *plan, {}, r).ok());

@@ -8,7 +8,7 @@
 
 #include "geometry/io/svg_export.h"
 #include "geometry/mesh/primitives.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
 #include "svg_test_util.h"
@@ -48,7 +48,7 @@ std::vector<std::vector<Key>> canonical(const geo::Polygons& polys) {
 }
 
 std::vector<geo::Layer> slice(const geo::Mesh& mesh, double layer_height) {
-  auto layers = geo::plan_layers(mesh.bbox().max.z - mesh.bbox().min.z, {layer_height, layer_height, {}});
+  auto layers = geo::plan_layer_heights(mesh.bbox().max.z - mesh.bbox().min.z, {layer_height, layer_height, {}});
   REQUIRE(layers.ok());
   Report report;
   REQUIRE(geo::slice_mesh(mesh, *layers, {}, report).ok());

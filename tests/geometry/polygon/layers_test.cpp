@@ -2,7 +2,7 @@
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/polygon/layers.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "polygon_checks.h"
 
@@ -13,7 +13,7 @@ namespace {
 
 std::vector<Layer> slice(const Mesh& mesh) {
   Report rep;
-  auto layers = plan_layers(mesh.bbox().max.z, {});
+  auto layers = plan_layer_heights(mesh.bbox().max.z, {});
   REQUIRE(layers.ok());
   auto st = slice_mesh(mesh, *layers, {}, rep);
   REQUIRE(st.ok());

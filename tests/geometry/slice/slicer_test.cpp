@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "geometry/mesh/primitives.h"
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 
 using namespace tranche;
@@ -56,9 +56,9 @@ struct Sliced {
 void slice_all(Mesh mesh, Sliced& out, double layer_height = 0.2) {
   const BBox3 b = mesh.bbox();
   mesh.transform(1.0, {0, 0, -b.min.z});
-  LayerPlanParams p;
+  LayerHeightParams p;
   p.first_layer_height = p.layer_height = layer_height;
-  auto plan = plan_layers(b.max.z - b.min.z, p);
+  auto plan = plan_layer_heights(b.max.z - b.min.z, p);
   REQUIRE(plan.ok());
   out.layers = std::move(*plan);
   auto st = slice_mesh(mesh, out.layers, {}, out.report);
@@ -421,7 +421,7 @@ TEST_CASE("slicing reports bad coordinates instead of crashing") {
 }
 
 TEST_CASE("progress is called once per layer") {
-  auto plan = plan_layers(10, {});
+  auto plan = plan_layer_heights(10, {});
   REQUIRE(plan.ok());
   std::atomic<size_t> calls{0}, max_seen{0};
   SliceParams p;

@@ -1,4 +1,4 @@
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 
 #include <cmath>
 #include <cstdint>
@@ -15,7 +15,7 @@ double units_to_mm(int64_t u) { return static_cast<double>(u) / kUnitsPerMm; }
 
 }  // namespace
 
-Result<std::vector<Layer>> plan_layers(double model_height, const LayerPlanParams& params) {
+Result<std::vector<Layer>> plan_layer_heights(double model_height, const LayerHeightParams& params) {
   if (!std::isfinite(model_height) || model_height <= 0)
     return Error{"", fmt::format("the model has no height ({} mm): nothing to slice", model_height)};
   const int64_t top = to_units(model_height);

@@ -1,4 +1,4 @@
-// Layer planning: the z range of every layer, decided before any slicing (the "layer planning"
+// Layer heights: the z range of every layer, decided before any slicing (the "layer planning"
 // stage: a layer's height may depend only on its index and its bottom z).
 #pragma once
 
@@ -10,7 +10,7 @@
 
 namespace tranche::geo {
 
-struct LayerPlanParams {
+struct LayerHeightParams {
   double first_layer_height = 0.2;  // mm, layer 0
   double layer_height = 0.2;        // mm, every other layer
   // When set, decides every layer's height (mm) from its index and bottom z (mm), layer 0
@@ -26,6 +26,6 @@ struct LayerPlanParams {
 // merged into the layer below instead (which grows by less than h / 4), so no layer is a sliver.
 // Errors: a height that is not positive/finite (≥ 1 µm), a non-positive model height, or more
 // than 1 000 000 layers.
-Result<std::vector<Layer>> plan_layers(double model_height, const LayerPlanParams& params);
+Result<std::vector<Layer>> plan_layer_heights(double model_height, const LayerHeightParams& params);
 
 }  // namespace tranche::geo

@@ -1,4 +1,4 @@
-#include "geometry/slice/layer_plan.h"
+#include "geometry/slice/layer_heights.h"
 
 #include <doctest/doctest.h>
 
@@ -22,7 +22,7 @@ void check_contiguous(const std::vector<Layer>& layers) {
 
 SCENARIO("layer plan with constant heights") {
   GIVEN("a 10 mm model and 0.2 mm layers") {
-    auto plan = plan_layers(10.0, {});
+    auto plan = plan_layer_heights(10.0, {});
     REQUIRE(plan.ok());
     THEN("there are 50 layers ending exactly on multiples of 0.2 mm") {
       CHECK(plan->size() == 50);
@@ -33,9 +33,9 @@ SCENARIO("layer plan with constant heights") {
     }
   }
   GIVEN("a first layer of 0.3 mm") {
-    LayerPlanParams p;
+    LayerHeightParams p;
     p.first_layer_height = 0.3;
-    auto plan = plan_layers(10.0, p);
+    auto plan = plan_layer_heights(10.0, p);
     REQUIRE(plan.ok());
     THEN("the rest follows at 0.2 mm and the last one is shortened to the model's top") {
       check_contiguous(*plan);
@@ -50,7 +50,7 @@ SCENARIO("layer plan with constant heights") {
 
 SCENARIO("the last partial layer") {
   GIVEN("a model 10.1 mm tall: the remainder (0.1) is at least a quarter layer") {
-    auto plan = plan_layers(10.1, {});
+    auto plan = plan_layer_heights(10.1, {});
     REQUIRE(plan.ok());
     THEN("a shortened last layer ends at the top") {
       CHECK(plan->size() == 51);
@@ -60,7 +60,7 @@ SCENARIO("the last partial layer") {
     }
   }
   GIVEN("a model 10.03 mm tall: the remainder (0.03) is a sliver") {
-    auto plan = plan_layers(10.03, {});
+    auto plan = plan_layer_heights(10.03, {});
     REQUIRE(plan.ok());
     THEN("it is merged into the layer below") {
       CHECK(plan->size() == 50);
@@ -70,7 +70,7 @@ SCENARIO("the last partial layer") {
     }
   }
   GIVEN("a model thinner than the first layer") {
-    auto plan = plan_layers(0.03, {});
+    auto plan = plan_layer_heights(0.03, {});
     REQUIRE(plan.ok());
     THEN("it is one layer of its own height") {
       REQUIRE(plan->size() == 1);
@@ -80,13 +80,13 @@ SCENARIO("the last partial layer") {
 }
 
 SCENARIO("variable layer height from a callback") {
-  LayerPlanParams p;
+  LayerHeightParams p;
   std::vector<std::pair<int, double>> calls;
   p.height = [&](int index, double z_bottom) {
     calls.emplace_back(index, z_bottom);
     return z_bottom < 1.0 ? 0.1 : 0.25;
   };
-  auto plan = plan_layers(3.0, p);
+  auto plan = plan_layer_heights(3.0, p);
   REQUIRE(plan.ok());
   check_contiguous(*plan);
   THEN("the callback sees each layer's index and bottom z and decides its height") {
@@ -103,21 +103,21 @@ SCENARIO("variable layer height from a callback") {
 }
 
 TEST_CASE("layer plan errors") {
-  CHECK(!plan_layers(0.0, {}).ok());
-  CHECK(!plan_layers(-1.0, {}).ok());
-  CHECK(!plan_layers(std::nan(""), {}).ok());
-  LayerPlanParams zero;
+  CHECK(!plan_layer_heights(0.0, {}).ok());
+  CHECK(!plan_layer_heights(-1.0, {}).ok());
+  CHECK(!plan_layer_heights(std::nan(""), {}).ok());
+  LayerHeightParams zero;
   zero.layer_height = 0;
-  auto r = plan_layers(1.0, zero);
+  auto r = plan_layer_heights(1.0, zero);
   REQUIRE(!r.ok());
   CHECK(r.error().where == "layer 1");
   CHECK(r.error().message.find("at least 0.001 mm") != std::string::npos);
-  LayerPlanParams nan_cb;
+  LayerHeightParams nan_cb;
   nan_cb.height = [](int, double) { return std::nan(""); };
-  CHECK(!plan_layers(1.0, nan_cb).ok());
-  LayerPlanParams tiny;
+  CHECK(!plan_layer_heights(1.0, nan_cb).ok());
+  LayerHeightParams tiny;
   tiny.layer_height = 0.001;
-  auto many = plan_layers(2000.0, tiny);
+  auto many = plan_layer_heights(2000.0, tiny);
   REQUIRE(!many.ok());
   CHECK(many.error().message.find("too small") != std::string::npos);
 }
