@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 
 namespace {
 
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   if (opt.model.empty()) return usage_error("missing MODEL");
 
   tranche::Report report;
-  auto result = tranche::pipeline::run_slice(opt, report);
+  auto result = tranche::app::slice(opt, report);
   for (const auto& w : report.warnings())
     std::fprintf(stderr, "warning: %s%s%s\n", w.where.c_str(), w.where.empty() ? "" : ": ", w.message.c_str());
   if (!result) {

@@ -19,7 +19,6 @@
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
-#include "geometry/pipeline/load_rules.h"
 #include "runtime/context/cascade.h"
 #include "runtime/context/overrides.h"
 
@@ -210,31 +209,19 @@ Result<geo::LayerHeightParams> layer_heights(const ctx::Cascade& cascade, const 
 
 }  // namespace
 
-Result<SliceSummary> run_slice(const SliceOptions& options, Report& report) {
+Status check_options(const SliceOptions& options) {
   if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty())
     return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE and/or --export-layers FILE"};
-  // The user's rules and --set: compiled and checked before any work. A --set of a property to a
-  // plain value (`0.2`, `20%`, `rear`) is an override; one with an expression
-  // (`--set fill_angle="15 deg * layer.index"`) is compiled as an implicit last rule, and one of
-  // a `param` as its last definition.
+  return ok_status();
+}
+
+Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* rs, Report& report) {
+  if (Status s = check_options(options); !s) return s.error();
+  // A --set of a property to a plain value (`0.2`, `20%`, `rear`) is an override, the last layer
+  // of the cascade; the others (expressions, params) were compiled into `rs` by the caller.
   std::vector<std::pair<std::string, std::string>> plain;
-  RulesInput rules_in;
-  rules_in.profile = options.profile;
-  rules_in.printer = options.printer;
-  rules_in.material = options.material;
-  rules_in.stdlib_dir = options.stdlib_dir;
-  rules_in.files = options.rules;
-  // A key that is not a property may be a `param` of the rules: the compiler knows (and says
-  // "did you mean" when it is neither).
-  for (const auto& [k, v] : options.sets) {
-    if (!schema::find_property(k) || !ctx::parse_override(k, v))
-      rules_in.expressions.emplace_back(k, v);
-    else
-      plain.emplace_back(k, v);
-  }
-  auto rules = load_rules(rules_in, report);
-  if (!rules) return rules.error();
-  const vm::RuleSet* rs = rules->get();
+  for (const auto& [k, v] : options.sets)
+    if (ctx::is_plain_override(k, v)) plain.emplace_back(k, v);
   auto cascade = ctx::Cascade::create(plain, rs, rs, rs);  // a bad --set fails before any work
   if (!cascade) return cascade.error();
   const bool svg = ends_with_svg(options.model);

@@ -1,5 +1,6 @@
 // One `tranche slice` run: the options the command line gives, and the function that runs the
-// whole pipeline (load → plan → slice → resolve → relate → decompose → toolpaths → G-code).
+// whole pipeline (load → plan → slice → resolve → relate → decompose → toolpaths → G-code) with
+// the rules already compiled (compiler/load_rules.h; apps/slice_command.h does both).
 #pragma once
 
 #include <optional>
@@ -9,6 +10,7 @@
 
 #include "base/report.h"
 #include "base/result.h"
+#include "runtime/vm/vm.h"
 
 namespace tranche::pipeline {
 
@@ -17,7 +19,7 @@ enum class OverlapMode { Additive, Boolean, Subtractive };
 struct SliceOptions {
   std::string model;                        // STL or SVG path
   std::string output_gcode;                 // -o; empty = no G-code
-  std::vector<std::string> rules;           // --rules, in cascade order
+  std::vector<std::string> rules;           // --rules, in cascade order (compiled by the caller)
   std::string printer = "generic-marlin";   // --printer: stdlib/printers/NAME.rules or a file; "none"
   std::string material = "pla";             // --material: stdlib/materials/NAME.rules or a file; "none"
   bool profile = true;                      // false: no stdlib profile (library tests)
@@ -42,6 +44,11 @@ struct SliceSummary {
   std::vector<std::string> written;  // output files, in the order written
 };
 
-Result<SliceSummary> run_slice(const SliceOptions& options, Report& report);
+// What can be refused before any work (today: a run that writes nothing).
+Status check_options(const SliceOptions& options);
+
+// `rules`: the profile, --rules files and --set expressions compiled and linked (null: none);
+// the plain --set overrides of `options.sets` are applied above them.
+Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* rules, Report& report);
 
 }  // namespace tranche::pipeline

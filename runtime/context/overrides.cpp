@@ -158,6 +158,10 @@ Result<Override> parse_override(std::string_view key, std::string_view value) {
   return Override{*id, v};
 }
 
+bool is_plain_override(std::string_view key, std::string_view value) {
+  return schema::find_property(key) && parse_override(key, value).ok();
+}
+
 Result<double> parse_field_value(std::string_view name, std::string_view value) {
   name = trim(name);
   value = trim(value);

@@ -21,6 +21,10 @@ struct Override {
 // unknown keys list the close property names; out-of-range values give the range.
 Result<Override> parse_override(std::string_view key, std::string_view value);
 
+// Whether `--set key=value` is a plain override (a property and a value parse_override
+// accepts), rather than an expression or a `param` of the rules, which the compiler takes.
+bool is_plain_override(std::string_view key, std::string_view value);
+
 // A value for the context field `name` as written on a command line (`rulec explain --at`):
 // a number with an optional unit of the field, an enum value name, or true/false.
 Result<double> parse_field_value(std::string_view name, std::string_view value);

@@ -16,7 +16,7 @@
 #include "geometry/fillangle/fill_angle.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 #include "runtime/vm/bundle.h"
 #include "tests/support/fixtures.h"
 
@@ -48,7 +48,7 @@ Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh
   r.options.sets = {{"skirt_loops", "0"}};
   r.options.sets.insert(r.options.sets.end(), sets.begin(), sets.end());
   Report report;
-  r.result = pipeline::run_slice(r.options, report);
+  r.result = app::slice(r.options, report);
   r.warnings = report.warnings();
   return r;
 }
@@ -320,7 +320,7 @@ SCENARIO("rules: fill_angle rules win over the Python script, which wins over th
   r.options.rules = {write_file(dir, "r.rules", "rule when layer.index >= 8 { fill_angle = 90 deg }\n")};
   r.options.sets = {{"skirt_loops", "0"}, {"top_layers", "0"}, {"bottom_layers", "0"}};
   Report report;
-  auto res = pipeline::run_slice(r.options, report);
+  auto res = app::slice(r.options, report);
   REQUIRE_MESSAGE(res.ok(), (res.ok() ? "" : res.error().to_string()));
   auto g = test::read_gcode(r.options.output_gcode);
   std::map<int, std::pair<double, double>> longest;

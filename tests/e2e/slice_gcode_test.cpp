@@ -13,7 +13,7 @@
 #include "gcode_reader.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
 #include "geometry/slice/slicer.h"
@@ -51,7 +51,7 @@ Sliced slice(const test::TempDir& dir, const std::string& name, const geo::Mesh&
   o.output_gcode = (dir / (name + ".gcode")).string();
   o.sets = std::move(sets);
   Report report;
-  auto r = pipeline::run_slice(o, report);
+  auto r = app::slice(o, report);
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
   Sliced s;
   s.gcode = test::read_gcode(o.output_gcode);
@@ -422,7 +422,7 @@ SCENARIO("a failing write leaves no file behind") {
   o.rules = {(dir / "late.rules").string()};
   GIVEN("no earlier output") {
     Report report;
-    auto r = pipeline::run_slice(o, report);
+    auto r = app::slice(o, report);
     REQUIRE_FALSE(r.ok());
     CHECK(r.error().where.find("late.rules:1:") != std::string::npos);
     CHECK(r.error().message.find("division by zero") != std::string::npos);
@@ -431,7 +431,7 @@ SCENARIO("a failing write leaves no file behind") {
   GIVEN("an earlier output") {
     std::ofstream(o.output_gcode) << "; the previous print\n";
     Report report;
-    REQUIRE_FALSE(pipeline::run_slice(o, report).ok());
+    REQUIRE_FALSE(app::slice(o, report).ok());
     std::ifstream in(o.output_gcode);
     std::string first;
     std::getline(in, first);

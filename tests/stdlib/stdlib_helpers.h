@@ -13,7 +13,7 @@
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 #include "tests/e2e/gcode_reader.h"
 #include "tests/support/fixtures.h"
 
@@ -45,7 +45,7 @@ inline Gcode slice_with(const TempDir& dir, const std::string& name, const geo::
   for (const auto& f : p.features_) o.rules.push_back((stdlib_path() / "features" / (f + ".rules")).string());
   o.sets = p.sets_;
   Report report;
-  auto r = pipeline::run_slice(o, report);
+  auto r = app::slice(o, report);
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
   for (const auto& w : report.warnings()) CHECK_MESSAGE(w.code != "rules", w.where << ": " << w.message);
   return read_gcode(o.output_gcode);

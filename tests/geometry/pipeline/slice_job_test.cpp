@@ -1,5 +1,5 @@
 // End to end: `tranche slice` from an STL file to the layer exports.
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 
 #include <doctest/doctest.h>
 
@@ -16,7 +16,7 @@
 
 using namespace tranche;
 using namespace tranche::geo;
-using tranche::pipeline::run_slice;
+using tranche::app::slice;
 using tranche::pipeline::SliceOptions;
 
 namespace {
@@ -53,7 +53,7 @@ SCENARIO("slicing a cube to SVG and JSON") {
   o.export_layers = (dir / "cube.json").string();
   o.quiet = true;
   Report report;
-  auto r = run_slice(o, report);
+  auto r = slice(o, report);
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
   THEN("50 layers of 100 mm², both files written, no warning") {
     CHECK(r->layers == 50);
@@ -81,14 +81,14 @@ SCENARIO("errors the user can act on") {
   GIVEN("-o with a --set that names no property") {
     o.output_gcode = (dir / "out.gcode").string();
     o.sets = {{"layer_hieght", "0.1"}};
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().message.find("did you mean `--set layer_height=0.1`?") != std::string::npos);
     CHECK(files_in(dir.path()) == 1);  // nothing written
   }
   GIVEN("no output at all") {
     o.export_svg.clear();
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().message.find("--export-svg") != std::string::npos);
   }
@@ -97,7 +97,7 @@ SCENARIO("errors the user can act on") {
     flat.vertices = {{0, 0, 1}, {10, 0, 1}, {0, 10, 1}, {10, 10, 1}};
     flat.triangles = {{0, 1, 2}, {2, 1, 3}};
     o.model = write_model(dir, "flat.stl", flat);
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().where == o.model);
     CHECK(r.error().message.find("flat") != std::string::npos);
@@ -108,20 +108,20 @@ SCENARIO("errors the user can act on") {
     fin.vertices = {{0, 0, 0}, {10, 0, 0}, {5, 0, 8}};
     fin.triangles = {{0, 1, 2}};
     o.model = write_model(dir, "fin.stl", fin);
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().message.find("nothing to print") != std::string::npos);
     CHECK(!std::filesystem::exists(o.export_svg));
   }
   GIVEN("a missing model") {
     o.model = (dir / "nope.stl").string();
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().to_string().find("nope.stl") != std::string::npos);
   }
   GIVEN("an export into a folder that does not exist") {
     o.export_svg = (dir / "no-such-folder" / "out.svg").string();
-    auto r = run_slice(o, report);
+    auto r = slice(o, report);
     REQUIRE(!r.ok());
     CHECK(r.error().where == o.export_svg);
   }
@@ -140,7 +140,7 @@ SCENARIO("an open mesh yields every layer, with warnings") {
   o.model = write_model(dir, "open.stl", m);
   o.export_svg = (dir / "open.svg").string();
   Report report;
-  auto r = run_slice(o, report);
+  auto r = slice(o, report);
   REQUIRE(r.ok());
   CHECK(r->layers == 20);
   for (double a : svg_layer_areas(o.export_svg)) CHECK(a == doctest::Approx(100));
@@ -161,7 +161,7 @@ TEST_CASE("the committed demo model is the generated one, and slices cleanly") {
   o.quiet = true;
   o.model = path;
   o.export_layers = (dir / "demo.json").string();
-  auto r = run_slice(o, report);
+  auto r = slice(o, report);
   REQUIRE(r.ok());
   CHECK(r->layers == 75);
   CHECK(report.empty());
@@ -185,7 +185,7 @@ TEST_CASE("the Stanford bunny (open, 223 boundary edges) loses no layer") {
   o.quiet = true;
   o.model = write_model(dir, "bunny.stl", *bunny);
   o.export_svg = (dir / "bunny.svg").string();
-  auto r = run_slice(o, report);
+  auto r = slice(o, report);
   REQUIRE(r.ok());
   const BBox3 b = bunny->bbox();
   CHECK(r->layers == static_cast<int>(std::ceil((b.max.z - b.min.z) / 0.2 - 0.25)));

@@ -11,12 +11,11 @@
 #include "geometry/fillangle/fill_angle.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
-#include "geometry/pipeline/slice_job.h"
+#include "apps/slice_command.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
 using tranche::pipeline::OverlapMode;
-using tranche::pipeline::run_slice;
 using tranche::pipeline::SliceOptions;
 
 namespace {
@@ -49,9 +48,9 @@ size_t count(const std::vector<std::string>& ls, const std::string& part) {
       std::count_if(ls.begin(), ls.end(), [&](const std::string& s) { return contains(s, part); }));
 }
 
-Result<pipeline::SliceSummary> slice(SliceOptions o, Report& report) {
+Result<pipeline::SliceSummary> run(SliceOptions o, Report& report) {
   o.quiet = true;
-  return run_slice(o, report);
+  return tranche::app::slice(o, report);
 }
 
 const std::string kDrawing =
@@ -71,7 +70,7 @@ TEST_CASE("slicing a flat SVG drawing") {
   o.export_layers = (dir / "out.json").string();
   Report report;
   SUBCASE("ten layers by default, additive: the full plate on each") {
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_MESSAGE(r.ok(), r.error().to_string());
     CHECK(r->layers == 10);
     CHECK(r->triangles == 0);
@@ -82,7 +81,7 @@ TEST_CASE("slicing a flat SVG drawing") {
   SUBCASE("subtractive, by height") {
     o.overlap = OverlapMode::Subtractive;
     o.svg_height_mm = 1;
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_MESSAGE(r.ok(), r.error().to_string());
     CHECK(r->layers == 5);
     auto ls = layer_lines(o.export_layers);
@@ -94,7 +93,7 @@ TEST_CASE("slicing a flat SVG drawing") {
     o.svg_tolerance_mm = 0.5;
     o.overlap = OverlapMode::Subtractive;
     o.background = "black";  // the black plate erases nothing below it; white adds
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_MESSAGE(r.ok(), r.error().to_string());
     CHECK(r->layers == 3);
     CHECK(count(layer_lines(o.export_layers), "\"outer\"") == 6);  // a disc and a square per layer
@@ -109,7 +108,7 @@ TEST_CASE("bad SVG input fails with the file's location and writes nothing") {
   o.export_layers = (dir / "out.json").string();
   o.export_svg = (dir / "out.svg").string();
   Report report;
-  auto r = slice(o, report);
+  auto r = run(o, report);
   REQUIRE_FALSE(r.ok());
   CHECK(r.error().where == o.model + ":2:19");
   CHECK(contains(r.error().message, "expected a number for 'L'"));
@@ -129,7 +128,7 @@ TEST_CASE("round trip: STL -> --export-svg -> edited in an editor -> slice the S
   a.export_svg = (dir / "layers.svg").string();
   a.export_layers = (dir / "stl.json").string();
   Report report;
-  auto ra = slice(a, report);
+  auto ra = run(a, report);
   REQUIRE_MESSAGE(ra.ok(), ra.error().to_string());
 
   // An editor's save: reformatted, a layer moved on the sheet, its namespace prefix renamed,
@@ -157,7 +156,7 @@ TEST_CASE("round trip: STL -> --export-svg -> edited in an editor -> slice the S
   b.model = edited;
   b.export_layers = (dir / "svg.json").string();
   Report rb_report;
-  auto rb = slice(b, rb_report);
+  auto rb = run(b, rb_report);
   REQUIRE_MESSAGE(rb.ok(), rb.error().to_string());
   CHECK(rb->layers == ra->layers);
   CHECK(rb_report.empty());
@@ -178,7 +177,7 @@ TEST_CASE("--fill-angle-script through run_slice") {
   if (!geo::FillAngleScript::available()) {
     o.fill_angle_script = write(dir, "a.py", "def fill_angle(ctx): return 0\n");
     Report report;
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_FALSE(r.ok());
     CHECK(contains(r.error().message, "built without Python"));
     return;
@@ -186,7 +185,7 @@ TEST_CASE("--fill-angle-script through run_slice") {
   SUBCASE("a working script") {
     o.fill_angle_script = write(dir, "ok.py", "def fill_angle(ctx):\n    return 15 * ctx.layer_index\n");
     Report report;
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_MESSAGE(r.ok(), r.error().to_string());
     CHECK(report.count("not-implemented") == 0);
   }
@@ -196,7 +195,7 @@ TEST_CASE("--fill-angle-script through run_slice") {
               "def fill_angle(ctx):\n    if ctx.layer_index == 4:\n        raise RuntimeError('no')\n"
               "    return 0\n");
     Report report;
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_FALSE(r.ok());
     CHECK(r.error().where == o.fill_angle_script + ":3");
     CHECK(contains(r.error().message, "on layer 4, island 0"));
@@ -207,7 +206,7 @@ TEST_CASE("--fill-angle-script through run_slice") {
     o.fill_angle_script = write(dir, "syntax.py", "def fill_angle(ctx):\nreturn 1\n");
     o.model = (dir / "missing.svg").string();  // never reached
     Report report;
-    auto r = slice(o, report);
+    auto r = run(o, report);
     REQUIRE_FALSE(r.ok());
     CHECK(r.error().where == o.fill_angle_script + ":2:1");
     CHECK(contains(r.error().message, "syntax error"));

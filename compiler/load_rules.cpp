@@ -1,4 +1,4 @@
-#include "geometry/pipeline/load_rules.h"
+#include "compiler/load_rules.h"
 
 #include <fmt/format.h>
 
@@ -15,7 +15,7 @@
 #include "runtime/vm/bundle.h"
 #include "runtime/vm/link.h"
 
-namespace tranche::pipeline {
+namespace tranche::compiler {
 
 namespace {
 
@@ -32,14 +32,14 @@ std::optional<std::string> read_all(const std::string& path) {
 Result<vm::Program> compile(const std::string* profile, const std::vector<std::string>& files,
                             const std::vector<std::pair<std::string, std::string>>& sets,
                             const std::string& stdlib_dir, Report& report) {
-  compiler::FrontendOptions options;
+  FrontendOptions options;
   options.stdlib_dir = stdlib_dir;
   diag::Sink sink;
   ast::Program program;
-  if (profile) compiler::load_source(program, compiler::kProfileName, *profile, options, sink);
-  for (const auto& f : files) compiler::load_file(program, f, options, sink);
-  for (const auto& [k, v] : sets) compiler::add_set(program, k, v, sink);
-  if (compiler::check(program, sink) && !sink.has_errors()) compiler::lint(program, sink);
+  if (profile) load_source(program, kProfileName, *profile, options, sink);
+  for (const auto& f : files) load_file(program, f, options, sink);
+  for (const auto& [k, v] : sets) add_set(program, k, v, sink);
+  if (check(program, sink) && !sink.has_errors()) lint(program, sink);
   sink.finish({});
   std::string first;
   std::string where;
@@ -51,7 +51,7 @@ Result<vm::Program> compile(const std::string* profile, const std::vector<std::s
                                       : std::string();
       report.warn("rules", at, fmt::format("warning[{}]: {} (rulec check explains)", d.code, d.message));
     } else if (first.empty()) {
-      first = compiler::render_text(program.sources, d, false);
+      first = render_text(program.sources, d, false);
       if (!d.labels.empty() && d.labels[0].span.valid())
         where = program.sources.file(d.labels[0].span.file).path;
     }
@@ -62,24 +62,24 @@ Result<vm::Program> compile(const std::string* profile, const std::vector<std::s
                                          : std::string();
     return Error{what, fmt::format("the rules have errors; nothing was sliced\n{}{}", first, more)};
   }
-  return compiler::generate(program);
+  return generate(program);
 }
 
 }  // namespace
 
 // --printer/--material NAME must exist: say which ones do.
 Status check_profile(const RulesInput& in) {
-  compiler::FrontendOptions options;
+  FrontendOptions options;
   options.stdlib_dir = in.stdlib_dir;
   namespace fs = std::filesystem;
-  fs::path dir = compiler::stdlib_dir(options);
+  fs::path dir = stdlib_dir(options);
   if (dir.empty())
     return Error{"stdlib", "cannot find the stdlib folder (defaults.rules, printers/, materials/); pass --stdlib DIR "
                            "or set TRANCHE_STDLIB"};
   for (auto [flag, kind, name] : {std::tuple{"--printer", "printers", in.printer}, std::tuple{"--material", "materials", in.material}}) {
     if (name.empty() || name == "none") continue;
     std::error_code ec;
-    bool path = compiler::profile_is_path(name);
+    bool path = profile_is_path(name);
     if (path ? fs::is_regular_file(name, ec) : fs::is_regular_file(dir / kind / (name + ".rules"), ec)) continue;
     std::vector<std::string> have;
     for (const auto& e : fs::directory_iterator(dir / kind, ec))
@@ -102,7 +102,7 @@ Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Repo
   std::vector<vm::Program> programs;
   std::vector<std::string> names;
   std::vector<std::string> pending;  // consecutive .rules files
-  const std::string profile = in.profile ? compiler::profile_source(in.printer, in.material) : std::string();
+  const std::string profile = in.profile ? profile_source(in.printer, in.material) : std::string();
   bool profile_done = !in.profile;
   auto flush = [&](bool with_sets) -> Status {
     if (pending.empty() && !with_sets && profile_done) return ok_status();
@@ -137,4 +137,4 @@ Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Repo
   return *rs;
 }
 
-}  // namespace tranche::pipeline
+}  // namespace tranche::compiler

@@ -1,6 +1,7 @@
 // `--rules FILE` (repeatable) and `--set key=EXPRESSION`: the user's rule layers of the cascade,
 // compiled (a `.rules` file, parsed here once, on this thread, before any slicing) or loaded (a
-// bundle from `rulec build`, verified), then linked in command-line order into one RuleSet.
+// bundle from `rulec build`, verified), then linked in command-line order into one RuleSet that
+// the slicer runs (geometry/pipeline receives it; it never parses rules itself).
 // Consecutive `.rules` files are compiled together, so that a file `use`d by several of them is
 // read once, at its first use, exactly as `rulec check a.rules b.rules` reads them.
 #pragma once
@@ -14,7 +15,7 @@
 #include "base/result.h"
 #include "runtime/vm/vm.h"
 
-namespace tranche::pipeline {
+namespace tranche::compiler {
 
 struct RulesInput {
   // The profile below the user's rules: stdlib/defaults.rules, then the printer and the material
@@ -32,4 +33,4 @@ struct RulesInput {
 // foreign bundle; a run-time limit of linking. Lint warnings go to `report`.
 Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& input, Report& report);
 
-}  // namespace tranche::pipeline
+}  // namespace tranche::compiler
