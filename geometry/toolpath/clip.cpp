@@ -142,4 +142,59 @@ Rings simplify(const Rings& rings, coord_t tol) {
   return out;
 }
 
+Rings convex_hull(geo::Ring pts) {
+  if (pts.size() < 3) return {};
+  std::sort(pts.begin(), pts.end(), [](const geo::Point& a, const geo::Point& b) {
+    return a.X < b.X || (a.X == b.X && a.Y < b.Y);
+  });
+  auto cross = [](const geo::Point& o, const geo::Point& a, const geo::Point& b) {
+    return static_cast<double>(a.X - o.X) * static_cast<double>(b.Y - o.Y) -
+           static_cast<double>(a.Y - o.Y) * static_cast<double>(b.X - o.X);
+  };
+  geo::Ring h(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 2], h[k - 1], pts[i - 1]) <= 0) --k;
+    h[k++] = pts[i - 1];
+  }
+  h.resize(k - 1);
+  return {h};
+}
+
+geo::Ring offset_polyline(const geo::Ring& pts, bool closed, double mm) {
+  const size_t n = pts.size();
+  if (n < 2 || mm == 0) return pts;
+  const double d = mm * geo::kUnitsPerMm;
+  closed = closed && pts.front() == pts.back();
+  const size_t m = closed ? n - 1 : n;  // distinct points
+  auto normal = [&](size_t i) {         // left normal of segment i -> i+1 (cyclic when closed)
+    const geo::Point& a = pts[i % m];
+    const geo::Point& b = pts[(i + 1) % (closed ? m : n)];
+    double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
+    return len > 0 ? std::pair<double, double>(-dy / len, dx / len) : std::pair<double, double>(0, 0);
+  };
+  geo::Ring out(n);
+  for (size_t i = 0; i < m; ++i) {
+    std::pair<double, double> nin, nout;
+    if (closed) {
+      nin = normal((i + m - 1) % m);
+      nout = normal(i);
+    } else {
+      nin = normal(i == 0 ? 0 : i - 1);
+      nout = normal(i + 1 < n ? i : i - 1);
+    }
+    double sx = nin.first + nout.first, sy = nin.second + nout.second;
+    double dot = 1 + nin.first * nout.first + nin.second * nout.second;  // 1 + cos(turn)
+    double k = dot > 0.2 ? d * 2 / dot : d * 10;                         // miter, capped at sharp turns
+    out[i] = geo::Point(pts[i].X + std::llround(sx * k * 0.5 * (dot > 0.2 ? 1 : 0.2)),
+                        pts[i].Y + std::llround(sy * k * 0.5 * (dot > 0.2 ? 1 : 0.2)));
+  }
+  if (closed) out[n - 1] = out[0];
+  return out;
+}
+
 }  // namespace tranche::toolpath

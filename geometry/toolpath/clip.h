@@ -18,6 +18,15 @@ geo::Rings intersection(const geo::Rings& a, const geo::Rings& b);
 geo::Rings difference(const geo::Rings& a, const geo::Rings& b);
 geo::Rings union_of(const geo::Rings& a, const geo::Rings& b = {});
 
+// The convex hull of `pts` as one counter-clockwise ring (Andrew's monotone chain); empty for
+// fewer than 3 points or collinear ones.
+geo::Rings convex_hull(geo::Ring pts);
+
+// `pts` (a polyline; `closed` when it ends at its first point) moved sideways by `mm`, positive
+// to the left of travel: each vertex along the bisector of its two edges, mitred, the miter
+// capped at sharp turns (a replacer's `offset` on a path).
+geo::Ring offset_polyline(const geo::Ring& pts, bool closed, double mm);
+
 // Area in mm² of a ring list under non-zero fill (outer positive, holes negative).
 double area_mm2(const geo::Rings& rings);
 // Rings whose bounding box meets `box` (others cannot change a boolean result inside it).

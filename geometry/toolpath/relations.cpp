@@ -69,6 +69,27 @@ bool Neighbours::covers(int k, const geo::Rings& region, const EdgeGrid& region_
   return true;
 }
 
+std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below) {
+  const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;
+  std::vector<float> out(n, 0.0f);
+  const double half = 0.5 * width_mm * geo::kUnitsPerMm;
+  for (size_t i = 0; i < n; ++i) {
+    const geo::Point &a = pts[i], &b = pts[i + 1];
+    double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
+    if (len <= 0) continue;
+    double nx = -dy / len * half, ny = dx / len * half;
+    double miss = 0;
+    constexpr double ts[] = {0.25, 0.5, 0.75};
+    for (double t : ts) {
+      double mx = double(a.X) + dx * t, my = double(a.Y) + dy * t;
+      geo::Point l(std::llround(mx + nx), std::llround(my + ny)), r(std::llround(mx - nx), std::llround(my - ny));
+      miss += 1.0 - below.inside_fraction(l, r);
+    }
+    out[i] = static_cast<float>(miss / 3.0);
+  }
+  return out;
+}
+
 double fraction_on(const geo::Rings& island, const geo::Rings& other) {
   double a = area_mm2(island);
   if (a <= 0) return 0;

@@ -51,6 +51,11 @@ class Neighbours {
   std::map<int, EdgeGrid> grids_;
 };
 
+// For each piece of the polyline `pts`, the fraction of a bead `width_mm` wide along it that
+// does not rest on the material `below` (0..1), sampled across the bead at a quarter, half and
+// three quarters of the piece.
+std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below);
+
 // Fraction of `island` (area) lying on `other` (0..1); 0 for an empty island.
 double fraction_on(const geo::Rings& island, const geo::Rings& other);
 
