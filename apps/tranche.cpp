@@ -25,8 +25,10 @@ options:
                                (default pla; `none` for none)
   --stdlib DIR                 where stdlib rules (`use "printers/..."`) are looked for first
   --set KEY=VALUE              override a property, e.g. --set layer_height=0.15 (repeatable)
-  --export-svg FILE            write every layer's polygons as SVG (one <g> per layer)
-  --export-layers FILE         write every layer's polygons as JSON
+  --export-svg FILE            write every layer as SVG: its islands and the paths printed on them
+  --export-layers FILE         write every layer as JSON: its islands and the paths printed on them
+  --exact-cells                the exports also show each island's exact monotone cells (the
+                               seed's decomposition: an analysis view, not what is printed)
   --overlap MODE               additive (default), boolean, or subtractive (SVG only)
   --fill-angle-script FILE     Python script defining fill_angle(ctx) -> degrees (trusted code)
   --svg-layers N               layers a flat SVG drawing is extruded to (default 10)
@@ -88,6 +90,8 @@ int main(int argc, char** argv) {
       if (!value(opt.export_svg)) return usage_error("--export-svg needs a file name");
     } else if (a == "--export-layers") {
       if (!value(opt.export_layers)) return usage_error("--export-layers needs a file name");
+    } else if (a == "--exact-cells") {
+      opt.exact_cells = true;
     } else if (a == "--overlap") {
       if (!value(v)) return usage_error("--overlap needs additive, boolean or subtractive");
       if (v == "additive") opt.overlap = OverlapMode::Additive;

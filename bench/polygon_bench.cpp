@@ -70,6 +70,7 @@ int run(int argc, char** argv) {
   // Best of `runs` for each stage: the machine is shared.
   double slice_s = 1e300, resolve_s = 1e300, decompose_s = 1e300;
   std::vector<Layer> layers;
+  std::vector<LayerCells> cells_of;
   for (int r = 0; r < runs; ++r) {
     auto planned = plan_layer_heights(mesh->bbox().max.z, {});
     if (!planned) return fail(planned.error().to_string());
@@ -83,15 +84,17 @@ int run(int argc, char** argv) {
     if (auto s = resolve_layers(layers, {}, rep); !s) return fail(s.error().to_string());
     resolve_s = std::min(resolve_s, since(t));
     t = Clock::now();
-    if (auto s = decompose_layers(layers); !s) return fail(s.error().to_string());
+    auto decomposed = decompose_layers(layers, [](const Layer& l, size_t) { return l.index % 2 ? 135.0 : 45.0; });
+    if (!decomposed) return fail(decomposed.error().to_string());
     decompose_s = std::min(decompose_s, since(t));
+    cells_of = std::move(*decomposed);
   }
   size_t islands = 0, cells = 0, max_cells = 0;
-  for (const Layer& l : layers) {
-    for (const Island& is : l.islands) {
+  for (const LayerCells& l : cells_of) {
+    for (const auto& is : l) {
       ++islands;
-      cells += is.cells.size();
-      max_cells = std::max(max_cells, is.cells.size());
+      cells += is.size();
+      max_cells = std::max(max_cells, is.size());
     }
   }
   const double n = static_cast<double>(std::max<size_t>(1, layers.size()));

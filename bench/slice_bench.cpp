@@ -16,8 +16,8 @@
 
 #include <fmt/format.h>
 
-#include "geometry/io/layers_json.h"
-#include "geometry/io/svg_export.h"
+#include "geometry/export/layers_json.h"
+#include "geometry/export/layers_svg.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/slice/layer_heights.h"
@@ -103,12 +103,12 @@ int run(int argc, char** argv) {
   double t_svg = 0, t_json = 0;
   if (!svg.empty()) {
     t = Clock::now();
-    if (auto st = write_layers_svg(svg, *layers, model); !st) return fail(st.error().to_string());
+    if (auto st = exports::write_layers_svg(svg, *layers, model); !st) return fail(st.error().to_string());
     t_svg = since(t);
   }
   if (!json.empty()) {
     t = Clock::now();
-    if (auto st = write_layers_json(json, *layers, model); !st) return fail(st.error().to_string());
+    if (auto st = exports::write_layers_json(json, *layers, model); !st) return fail(st.error().to_string());
     t_json = since(t);
   }
   const double total = since(t0);

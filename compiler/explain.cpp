@@ -7,7 +7,7 @@
 #include <set>
 
 #include "compiler/names.h"
-#include "runtime/context/defaults.h"
+#include "runtime/context/cascade.h"
 #include "runtime/context/overrides.h"
 #include "runtime/vm/verify.h"
 
@@ -93,17 +93,16 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
     }
   }
 
-  // Decide every stage as the slicer would: built-in defaults, the given values, then the rules.
-  ctx::BuiltinDefaults defaults;
+  // Decide every stage as the slicer would, through the same cascade: built-in defaults, the
+  // given values (where a --fill-angle-script's angle would sit), then the rules.
+  auto cascade = ctx::Cascade::create({}, &rs);
+  if (!cascade) return cascade.error();
+  ctx::Overrides below;
+  for (auto [q, v] : given_props) below.add({q, v});
+  (*cascade)->set_middle(&below);
   auto props = ctx::PropertyValues::schema_defaults();
-  c.set_props(&props);
-  for (int s = 0; s < schema::kStageCount; ++s) {
-    auto stage = static_cast<schema::Stage>(s);
-    if (Status st = defaults.decide(stage, c, props); !st) return st.error();
-    for (auto [q, v] : given_props)
-      if (schema::property(q).stage == stage) props[q] = v;
-    if (Status st = rs.decide(stage, c, props); !st) return st.error();
-  }
+  for (int s = 0; s < schema::kStageCount; ++s)
+    if (Status st = (*cascade)->decide(static_cast<schema::Stage>(s), c, props); !st) return st.error();
 
   std::string out;
   // The composition of the cascade: runs of consecutive rules from one file.

@@ -1,6 +1,6 @@
-// The per-layer data every stage after slicing reads and extends: the "array of arrays".
-// Slicing fills Layer::loops; resolution fills islands; decomposition fills cells; toolpaths
-// read everything. Exports (--export-svg, --export-layers) write whatever is filled.
+// The per-layer data every stage after slicing reads: the "array of arrays". Slicing fills
+// Layer::loops; resolution fills islands; the toolpath stage reads them (it never writes here:
+// what is decided per island, such as the fill angle, lives in the layer plans).
 #pragma once
 
 #include <cmath>
@@ -17,9 +17,9 @@ enum class EdgeKind : uint8_t {
   Artificial,  // a cut made by hole bridging or the monotone decomposition: no perimeter
 };
 
-// One piece of an island's fill region, monotone with respect to its fill direction: every
-// line parallel to the fill direction meets it in at most one interval, so one continuous
-// zig-zag fills it with no travel move.
+// One piece of an island, monotone with respect to its fill direction: every line parallel to
+// the fill direction meets it in at most one interval, so one continuous zig-zag fills it with
+// no travel move (the seed's exact decomposition, geometry/polygon/decompose.h).
 struct Cell {
   Ring ring;                    // counter-clockwise, simple
   std::vector<EdgeKind> edges;  // edges[i] is the edge ring[i] -> ring[(i + 1) % n]
@@ -29,10 +29,8 @@ struct Cell {
 
 // A strictly connected region of material in one layer.
 struct Island {
-  Polygon shape;            // outer CCW, holes CW
+  Polygon shape;  // outer CCW, holes CW
   double area_mm2 = 0;
-  double fill_angle_deg = std::nan("");  // decided per island (default, script, or rules)
-  std::vector<Cell> cells;  // the decomposition of the island's fill region
 };
 
 struct Layer {

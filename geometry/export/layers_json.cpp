@@ -1,21 +1,23 @@
-#include "geometry/io/layers_json.h"
+#include "geometry/export/layers_json.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
 
-#include "base/output_file.h"
 #include "geometry/io/text_out.h"
 
-namespace tranche::geo {
+namespace tranche::exports {
+
+using geo::append_mm;
+
 namespace {
 
 // Layers are formatted in parallel in batches of this many, then written in order: output
 // memory stays bounded whatever the model.
 constexpr size_t kBatch = 64;
 
-void append_ring(fmt::memory_buffer& out, const Ring& ring) {
+void append_points(fmt::memory_buffer& out, const geo::Ring& ring) {
   out.push_back('[');
   for (size_t i = 0; i < ring.size(); ++i) {
     if (i) out.push_back(',');
@@ -28,18 +30,42 @@ void append_ring(fmt::memory_buffer& out, const Ring& ring) {
   out.push_back(']');
 }
 
-// The island's monotone cells (geometry/polygon): fill angle, then each cell's ring with one
-// letter per edge, r (real border) or a (artificial cut). Absent before decomposition.
-void append_cells(fmt::memory_buffer& out, const Island& island) {
-  if (std::isnan(island.fill_angle_deg)) return;
-  fmt::format_to(std::back_inserter(out), ", \"fill_angle\": {}, \"cells\": [", island.fill_angle_deg);
-  for (size_t c = 0; c < island.cells.size(); ++c) {
-    const Cell& cell = island.cells[c];
-    fmt::format_to(std::back_inserter(out), "{}{{\"area\": {}, \"ring\": ", c ? "," : "",
-                   std::abs(area_mm2(cell.ring)));
-    append_ring(out, cell.ring);
+void append_paths(fmt::memory_buffer& out, const std::vector<plan::PathPlan>& paths) {
+  out.push_back('[');
+  for (size_t k = 0; k < paths.size(); ++k) {
+    const plan::PathPlan& p = paths[k];
+    fmt::format_to(std::back_inserter(out), "{}\n    {{\"kind\": \"{}\", \"cell\": {}, \"width\": {}, \"closed\": {}, \"points\": ",
+                   k ? "," : "", kind_name(p.kind), p.cell, p.width, p.closed ? "true" : "false");
+    append_points(out, p.pts);
+    out.push_back('}');
+  }
+  out.push_back(']');
+}
+
+// What the G-code prints on the island: its fill angle, its cells (one zig-zag each), its paths.
+void append_printed(fmt::memory_buffer& out, const plan::IslandPlan& ip) {
+  fmt::format_to(std::back_inserter(out), ", \"fill_angle\": {}, \"replaced\": {}, \"cells\": [",
+                 ip.props[schema::PropId::FillAngle], ip.replaced ? "true" : "false");
+  for (size_t c = 0; c < ip.cells.size(); ++c) {
+    const plan::CellPlan& cell = ip.cells[c];
+    fmt::format_to(std::back_inserter(out), "{}{{\"index\": {}, \"solid\": {}, \"fill_angle\": {}, \"area\": {}}}",
+                   c ? "," : "", cell.index, cell.solid ? "true" : "false", cell.fill_angle_deg, cell.area_mm2);
+  }
+  out.append(std::string_view("], \"paths\": "));
+  append_paths(out, ip.paths);
+}
+
+// The seed's exact monotone cells (analysis): each ring with one letter per edge, r (real
+// border) or a (artificial cut).
+void append_exact(fmt::memory_buffer& out, const std::vector<geo::Cell>& cells) {
+  out.append(std::string_view(", \"exact_cells\": ["));
+  for (size_t c = 0; c < cells.size(); ++c) {
+    const geo::Cell& cell = cells[c];
+    fmt::format_to(std::back_inserter(out), "{}{{\"area\": {}, \"fill_angle\": {}, \"ring\": ", c ? "," : "",
+                   std::abs(geo::area_mm2(cell.ring)), cell.fill_angle_deg);
+    append_points(out, cell.ring);
     out.append(std::string_view(", \"edges\": \""));
-    for (const EdgeKind k : cell.edges) out.push_back(k == EdgeKind::Real ? 'r' : 'a');
+    for (const geo::EdgeKind k : cell.edges) out.push_back(k == geo::EdgeKind::Real ? 'r' : 'a');
     out.append(std::string_view("\"}"));
   }
   out.push_back(']');
@@ -47,7 +73,8 @@ void append_cells(fmt::memory_buffer& out, const Island& island) {
 
 }  // namespace
 
-void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
+void LayersJson::append_layer(fmt::memory_buffer& out, const ExportLayer& e) {
+  const geo::Layer& layer = *e.layer;
   double area = 0;
   for (const auto& island : layer.islands) area += island.area_mm2;
   fmt::format_to(
@@ -55,48 +82,73 @@ void append_layer_json(fmt::memory_buffer& out, const Layer& layer) {
       "{{\"index\": {}, \"z_bottom\": {}, \"z_top\": {}, \"z_slice\": {}, \"area\": {}, \"islands\": [",
       layer.index, layer.z_bottom, layer.z_top, layer.z_slice(), area);
   for (size_t i = 0; i < layer.islands.size(); ++i) {
-    const Island& island = layer.islands[i];
-    fmt::format_to(std::back_inserter(out), "{}\n  {{\"area\": {}, \"outer\": ", i ? "," : "",
+    const geo::Island& island = layer.islands[i];
+    fmt::format_to(std::back_inserter(out), "{}\n  {{\"index\": {}, \"area\": {}, \"outer\": ", i ? "," : "", i,
                    island.area_mm2);
-    append_ring(out, island.shape.outer);
+    append_points(out, island.shape.outer);
     out.append(std::string_view(", \"holes\": ["));
     for (size_t h = 0; h < island.shape.holes.size(); ++h) {
       if (h) out.push_back(',');
-      append_ring(out, island.shape.holes[h]);
+      append_points(out, island.shape.holes[h]);
     }
     out.push_back(']');
-    append_cells(out, island);
+    if (const plan::IslandPlan* ip = e.printed_on(i)) append_printed(out, *ip);
+    if (e.exact && i < e.exact->size()) append_exact(out, (*e.exact)[i]);
     out.push_back('}');
   }
-  out.append(std::string_view(layer.islands.empty() ? "]}" : "\n]}"));
+  out.push_back(']');
+  if (e.skirt && !e.skirt->empty()) {
+    out.append(std::string_view(", \"skirt\": "));
+    append_paths(out, *e.skirt);
+  }
+  out.append(std::string_view(layer.islands.empty() ? "}" : "\n}"));
 }
 
-Status write_layers_json(const std::string& path, const std::vector<Layer>& layers, const std::string& source,
-                         const std::function<void(size_t)>& progress) {
+Result<std::unique_ptr<LayersJson>> LayersJson::open(const std::string& path, const std::string& source,
+                                                     size_t layer_count, bool printed, bool exact) {
   auto file = OutputFile::create(path, "the layer export");
   if (!file) return file.error();
+  std::unique_ptr<LayersJson> w(new LayersJson(std::move(*file)));
   fmt::memory_buffer head;
   fmt::format_to(std::back_inserter(head),
                  "{{\"format\": \"tranche-layers\", \"version\": {}, \"units\": \"mm\", \"source\": ",
                  kLayersJsonVersion);
-  append_json_string(head, source);
-  fmt::format_to(std::back_inserter(head), ", \"layer_count\": {},\n\"layers\": [\n", layers.size());
-  if (auto st = file->write({head.data(), head.size()}); !st) return st;
+  geo::append_json_string(head, source);
+  fmt::format_to(std::back_inserter(head), ", \"layer_count\": {}, \"printed\": {}, \"exact_cells\": {},\n\"layers\": [\n",
+                 layer_count, printed ? "true" : "false", exact ? "true" : "false");
+  if (auto st = w->file_.write({head.data(), head.size()}); !st) return st.error();
+  return w;
+}
 
+Status LayersJson::write_layer(const fmt::memory_buffer& element) {
+  if (written_++ > 0)
+    if (Status s = file_.write(",\n"); !s) return s;
+  return file_.write({element.data(), element.size()});
+}
+
+Status LayersJson::finish() {
+  if (Status s = file_.write(written_ ? "\n]}\n" : "]}\n"); !s) return s;
+  return file_.commit();
+}
+
+Status write_layers_json(const std::string& path, const std::vector<geo::Layer>& layers, const std::string& source,
+                         const std::function<void(size_t)>& progress) {
+  auto w = LayersJson::open(path, source, layers.size(), false, false);
+  if (!w) return w.error();
   std::vector<fmt::memory_buffer> batch(kBatch);
   for (size_t base = 0; base < layers.size(); base += kBatch) {
     const size_t n = std::min(kBatch, layers.size() - base);
     tbb::parallel_for(size_t{0}, n, [&](size_t i) {
       batch[i].clear();
-      append_layer_json(batch[i], layers[base + i]);
-      batch[i].append(std::string_view(base + i + 1 < layers.size() ? ",\n" : "\n"));
+      ExportLayer e;
+      e.layer = &layers[base + i];
+      LayersJson::append_layer(batch[i], e);
     });
     for (size_t i = 0; i < n; ++i)
-      if (auto st = file->write({batch[i].data(), batch[i].size()}); !st) return st;
+      if (auto st = (*w)->write_layer(batch[i]); !st) return st;
     if (progress) progress(base + n);
   }
-  if (auto st = file->write("]}\n"); !st) return st;
-  return file->commit();
+  return (*w)->finish();
 }
 
-}  // namespace tranche::geo
+}  // namespace tranche::exports

@@ -1,19 +1,19 @@
-// The fill angle of each island before the rules decide: the default 45°/135° alternation, or a
-// Python script given with --fill-angle-script (docs/fill-angle-script.md). Precedence, lowest
-// first: default < script < rules; rules see the script's value as the angle they override.
+// --fill-angle-script (docs/fill-angle-script.md): a Python function that gives each island's
+// fill angle, as one layer of the cascade between the built-in defaults (the 45°/135°
+// alternation, which the script sees as ctx.default_angle) and the rules, which see the script's
+// value as the angle they override.
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
-#include "geometry/core/layer.h"
 #include "base/result.h"
+#include "geometry/core/layer.h"
+#include "runtime/context/cascade.h"
 
 namespace tranche::geo {
-
-// The default fill angle, deg: 45 on even layers, 135 on odd ones (perpendicular layer to layer).
-double default_fill_angle_deg(int layer_index);
 
 // What a script sees about one island. Lengths mm, areas mm², angles deg.
 struct FillAngleContext {
@@ -22,6 +22,7 @@ struct FillAngleContext {
   int island_index = 0, island_count = 0;
   double area = 0;
   const Polygon* shape = nullptr;  // the island: outer CCW, holes CW (units, see geom.h)
+  double default_angle = 45;       // what the cascade gives below the script (deg)
 };
 
 // A loaded script. Calls are thread-safe (each takes the interpreter lock), but the pipeline
@@ -53,8 +54,24 @@ class FillAngleScript {
   std::unique_ptr<Impl> impl_;
 };
 
-// Sets Island::fill_angle_deg of every island of every layer (bottom to top) from the script,
-// in one serial pass, before decomposition. The first error stops the pass.
-Status apply_fill_angle_script(FillAngleScript& script, std::vector<Layer>& layers);
+// The script's angle of every island, as a layer of the cascade (Cascade::set_middle): computed
+// in one serial pass over the layers, bottom to top, so Python calls never race and results
+// never depend on scheduling; then read by layer.index and island.index at the island stage.
+class ScriptAngles final : public ctx::Decider {
+ public:
+  // `layers`: the islands as the loop will see them (print setup's); `print_ctx` and
+  // `print_props`: the print stage. The first error of the script stops the pass.
+  static Result<std::unique_ptr<ScriptAngles>> compute(FillAngleScript& script, std::span<const Layer> layers,
+                                                       const ctx::Cascade& cascade, const ctx::Context& print_ctx,
+                                                       const ctx::PropertyValues& print_props);
+  double angle(size_t layer, size_t island) const { return angles_[layer][island]; }
+
+  Status decide(schema::Stage stage, const ctx::Context& ctx, ctx::PropertyValues& props) const override;
+  schema::Level varies_at(schema::Stage stage) const override;
+  bool reads(schema::FieldId field) const override;
+
+ private:
+  std::vector<std::vector<double>> angles_;  // [layer][island], deg
+};
 
 }  // namespace tranche::geo

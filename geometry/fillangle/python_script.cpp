@@ -228,7 +228,7 @@ Result<double> FillAngleScript::angle(const FillAngleContext& c) {
     kw["island_index"] = c.island_index;
     kw["island_count"] = c.island_count;
     kw["area"] = c.area;
-    kw["default_angle"] = default_fill_angle_deg(c.layer_index);
+    kw["default_angle"] = c.default_angle;
     py::list holes;
     if (c.shape) {
       BBox2 b = bbox(*c.shape);

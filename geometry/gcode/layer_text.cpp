@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "geometry/gcode/numbers.h"
-#include "geometry/toolpath/context_fill.h"
+#include "geometry/plan/context_fill.h"
+#include "geometry/plan/walk.h"
 #include "geometry/toolpath/flow.h"
-#include "geometry/toolpath/walk.h"
 
 namespace tranche::gcode {
 
@@ -15,11 +15,11 @@ using schema::Flavor;
 using schema::Level;
 using schema::PathKind;
 using schema::PropId;
-using toolpath::CellPlan;
-using toolpath::IslandPlan;
-using toolpath::LayerPlan;
-using toolpath::Op;
-using toolpath::PathPlan;
+using plan::CellPlan;
+using plan::IslandPlan;
+using plan::LayerPlan;
+using plan::Op;
+using plan::PathPlan;
 
 std::string fan_command(Flavor flavor, double ratio) {
   ratio = std::clamp(ratio, 0.0, 1.0);
@@ -64,7 +64,8 @@ std::string_view type_name(PathKind k) {
 
 class Formatter final : public ctx::LineSink {
  public:
-  Formatter(const toolpath::PrintSetup& s, const LayerPlan& plan) : S(s), plan_(plan), ctx_(s.print_ctx) {
+  Formatter(const setup::PrintSetup& s, const ctx::Executors* executors, const LayerPlan& plan)
+      : S(s), plan_(plan), ctx_(s.print_ctx), exec_(executors) {
     const auto& P = s.print_props;
     relative_ = P[PropId::RelativeE] != 0;
     retract_ = std::llround(P[PropId::RetractLength] * 1e5);
@@ -75,12 +76,11 @@ class Formatter final : public ctx::LineSink {
     filament_area_ = toolpath::filament_area_mm2(P[PropId::FilamentDiameter]);
     height_ = plan.height;
     z_um_ = std::llround(plan.z * 1000);
-    exec_ = s.rules.executors;
     out_.text.reserve(1 << 16);
   }
 
   Result<LayerText> run() {
-    toolpath::set_layer_fields(ctx_, plan_, static_cast<int>(plan_.islands.size()));
+    plan::set_layer_fields(ctx_, plan_, static_cast<int>(plan_.islands.size()));
     ctx_.set(schema::FieldId::LayerTime, plan_.time_s);
     ctx_.set_props(&plan_.props);
     if (exec_) islands_view_.bind(ctx_, plan_.islands);
@@ -113,7 +113,7 @@ class Formatter final : public ctx::LineSink {
     mark(LayerText::Mark::Kind::LayerTravel, 0);
     lifted_ = false;
     f_ = travel_f_;
-    toolpath::walk_layer(plan_, *this);
+    plan::walk_layer(plan_, *this);
     ctx_.clear_from(Level::Island);
     ctx_.set_props(&plan_.props);
     hook(Level::Layer, ctx::When::After);
@@ -134,32 +134,32 @@ class Formatter final : public ctx::LineSink {
   // walk_layer visitor.
   void island_begin(const IslandPlan& ip) {
     ctx_.clear_from(Level::Island);
-    toolpath::set_island_fields(ctx_, ip);
+    plan::set_island_fields(ctx_, ip);
     ctx_.set_props(&ip.props);
     hook(Level::Island, ctx::When::Before);
   }
   void island_end(const IslandPlan& ip) {
     ctx_.clear_from(Level::Cell);
-    toolpath::set_island_fields(ctx_, ip);
+    plan::set_island_fields(ctx_, ip);
     ctx_.set_props(&ip.props);
     hook(Level::Island, ctx::When::After);
   }
   void cell_begin(const IslandPlan& ip, const CellPlan& c) {
     ctx_.clear_from(Level::Cell);
-    toolpath::set_cell_fields(ctx_, c);
+    plan::set_cell_fields(ctx_, c);
     ctx_.set_props(&ip.props);
     hook(Level::Cell, ctx::When::Before);
   }
   void cell_end(const IslandPlan& ip, const CellPlan& c) {
     ctx_.clear_from(Level::Cell);
-    toolpath::set_cell_fields(ctx_, c);
+    plan::set_cell_fields(ctx_, c);
     ctx_.set_props(&ip.props);
     hook(Level::Cell, ctx::When::After);
   }
   void path_begin(const IslandPlan*, const PathPlan& p) {
     if (!exec_) return;
     ctx_.clear_from(Level::Path);
-    toolpath::set_path_fields(ctx_, p);
+    plan::set_path_fields(ctx_, p);
     ctx_.set_props(&p.props);
     if (exec_->has(Level::Path, ctx::When::Before) || exec_->has(Level::Path, ctx::When::After))
       path_view_.bind(ctx_, p, S.shift);
@@ -336,12 +336,12 @@ class Formatter final : public ctx::LineSink {
     pos_ = to;
   }
 
-  const toolpath::PrintSetup& S;
+  const setup::PrintSetup& S;
   const LayerPlan& plan_;
   ctx::Context ctx_;
-  toolpath::PathView path_view_;
-  toolpath::IslandsView islands_view_;
   const ctx::Executors* exec_ = nullptr;
+  plan::PathView path_view_;
+  plan::IslandsView islands_view_;
   Status status_ = ok_status();
   LayerText out_;
   bool relative_ = false, retracted_ = false, lifted_ = false, has_pos_ = false, has_type_ = false;
@@ -359,8 +359,9 @@ class Formatter final : public ctx::LineSink {
 
 }  // namespace
 
-Result<LayerText> format_layer(const toolpath::PrintSetup& setup, const LayerPlan& plan) {
-  Formatter f(setup, plan);
+Result<LayerText> format_layer(const setup::PrintSetup& setup, const ctx::Executors* executors,
+                               const LayerPlan& plan) {
+  Formatter f(setup, executors, plan);
   return f.run();
 }
 

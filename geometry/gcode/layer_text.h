@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "geometry/plan/plan.h"
+#include "geometry/setup/print_setup.h"
 #include "geometry/toolpath/comb.h"
-#include "geometry/toolpath/layer_loop.h"
-#include "geometry/toolpath/plan.h"
+#include "runtime/context/hooks.h"
 
 namespace tranche::gcode {
 
@@ -38,6 +39,8 @@ struct LayerText {
 // G-code words for the flavour's fan command (ratio 0..1): "M106 S255", "M107", "M106 P0 S0.5".
 std::string fan_command(schema::Flavor flavor, double ratio);
 
-Result<LayerText> format_layer(const toolpath::PrintSetup& setup, const toolpath::LayerPlan& plan);
+// The layer's text; `executors` (may be null) add the hooks' G-code around its elements.
+Result<LayerText> format_layer(const setup::PrintSetup& setup, const ctx::Executors* executors,
+                               const plan::LayerPlan& plan);
 
 }  // namespace tranche::gcode

@@ -438,7 +438,8 @@ void Reader::warn_outside_layers(pugi::xml_node root, const svg::Stack& stack) {
     pugi::xml_node n = todo.back();
     todo.pop_back();
     std::string name = local_name(n);
-    if (layers.count(n.internal_object()) || name == "defs" || name == "symbol") continue;
+    if (layers.count(n.internal_object()) || name == "defs" || name == "symbol" || svg::has_class(n, "legend"))
+      continue;  // layers are read; definitions and the export's legend are not material
     if (name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "polygon" ||
         name == "polyline")
       warn(n, "svg-stack-outside",

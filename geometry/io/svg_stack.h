@@ -16,7 +16,7 @@ namespace tranche::geo::svg {
 
 inline constexpr const char* kStackNamespace = "urn:tranche:layers";
 inline constexpr const char* kStackFormat = "tranche-layers-svg";
-inline constexpr int kStackVersion = 1;  // the newest version this reader knows
+inline constexpr int kStackVersion = 2;  // the newest version this reader knows (2 adds printed paths)
 
 struct StackLayer {
   pugi::xml_node node;             // the layer's group; its transform only places it on the sheet

@@ -8,14 +8,12 @@
 #include <fmt/format.h>
 
 #include "geometry/fillangle/fill_angle.h"
-#include "geometry/gcode/print.h"
-#include "geometry/io/layers_json.h"
-#include "geometry/io/svg_export.h"
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
+#include "geometry/pipeline/driver.h"
 #include "geometry/pipeline/progress.h"
-#include "geometry/polygon/decompose.h"
 #include "geometry/polygon/layers.h"
+#include "geometry/setup/print_setup.h"
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
@@ -75,9 +73,75 @@ void warn_topology(const geo::MeshTopology& t, const std::string& file, Report& 
                     t.misoriented_edges));
 }
 
+// The print stage, decided once, and the layer heights it leads to.
+struct PrintStage {
+  ctx::Context ctx;            // the print fields
+  ctx::PropertyValues props;   // the print stage's decisions
+};
+
+Result<PrintStage> decide_print(const ctx::Cascade& cascade, const setup::PrintFacts& facts) {
+  PrintStage p;
+  p.ctx = setup::print_context(facts);
+  auto props = cascade.print_props(p.ctx);
+  if (!props) return props.error();
+  p.props = std::move(*props);
+  return p;
+}
+
+// Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
+Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
+                                             const std::string& model) {
+  Status error = ok_status();
+  geo::LayerHeightParams params;
+  params.height = [&](int index, double z_bottom) {
+    auto h = cascade.layer_height(print.ctx, print.props, index, z_bottom);
+    if (!h) {
+      if (error) error = h.error();
+      return 0.2;
+    }
+    return *h;
+  };
+  auto layers = geo::plan_layer_heights(top, params);
+  if (!error) return error.error();
+  if (!layers) return Error{model, layers.error().to_string()};
+  return layers;
+}
+
+// The top (mm) of the first `n` layers the cascade plans: a drawing extruded by layer count.
+Result<double> height_of_layers(const ctx::Cascade& cascade, const PrintStage& print, int n) {
+  int64_t z = 0;
+  for (int i = 0; i < n; ++i) {
+    auto h = cascade.layer_height(print.ctx, print.props, i, static_cast<double>(z) / geo::kUnitsPerMm);
+    if (!h) return h.error();
+    if (!(*h >= 0.001) || !std::isfinite(*h))
+      return Error{fmt::format("layer {}", i), fmt::format("layer height must be at least 0.001 mm, got {} mm", *h)};
+    z += geo::to_units(*h);
+  }
+  return static_cast<double>(z) / geo::kUnitsPerMm;
+}
+
+// XY extent of the layers' loops (a drawing's).
+geo::BBox2 loops_box(const std::vector<geo::Layer>& layers) {
+  geo::BBox2 box;
+  for (const auto& l : layers)
+    for (const auto& r : l.loops)
+      for (const auto& p : r) box.add(p);
+  return box;
+}
+
+// What loading gives the stages after it.
+struct Loaded {
+  std::vector<geo::Layer> layers;  // sliced: loops set
+  setup::PrintFacts facts;
+  PrintStage print;
+  size_t triangles = 0;
+};
+
 // SVG input: a layer stack keeps its own layers; a flat drawing is repeated on every layer of a
-// prism --svg-height mm high, or of --svg-layers layers (10 by default).
-Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report) {
+// prism --svg-height mm high, or of --svg-layers layers (10 by default), its heights planned by
+// the cascade like an STL's. The print stage of a drawing extruded by layer count is decided
+// before its height is known: there, print.height reads 0 (docs/architecture.md).
+Result<Loaded> load_svg(const SliceOptions& o, const ctx::Cascade& cascade, Report& report) {
   geo::SvgImportOptions so;
   so.tolerance_mm = o.svg_tolerance_mm;
   so.overlap = o.overlap == OverlapMode::Boolean       ? geo::SvgOverlap::Boolean
@@ -86,7 +150,7 @@ Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report
   so.background = o.background;
   auto model = geo::load_svg(o.model, so, report);
   if (!model) return model.error();
-  std::vector<geo::Layer> layers;
+  Loaded out;
   if (model->layer_stack) {
     if (o.svg_layers > 0 || o.svg_height_mm > 0)
       report.warn("svg-stack-height", o.model,
@@ -97,32 +161,109 @@ Result<std::vector<geo::Layer>> svg_layers(const SliceOptions& o, Report& report
       l.z_bottom = model->layers[i].z_bottom;
       l.z_top = model->layers[i].z_top;
       l.loops = geo::to_rings(model->layers[i].polygons);
-      layers.push_back(std::move(l));
+      out.layers.push_back(std::move(l));
     }
-    return layers;
+    out.facts.height = out.layers.empty() ? 0 : out.layers.back().z_top;
+    out.facts.box = loops_box(out.layers);
+    auto print = decide_print(cascade, out.facts);
+    if (!print) return print.error();
+    out.print = std::move(*print);
+    return out;
   }
-  geo::LayerHeightParams params;
-  const int n = o.svg_layers > 0 ? o.svg_layers : 10;
-  const double height =
-      o.svg_height_mm > 0 ? o.svg_height_mm : params.first_layer_height + (n - 1) * params.layer_height;
-  auto planned = geo::plan_layer_heights(height, params);
-  if (!planned) return Error{o.model, planned.error().to_string()};
   const geo::Rings loops = geo::to_rings(model->layers[0].polygons);
-  for (auto& l : *planned) l.loops = loops;
-  return planned;
+  for (const auto& r : loops)
+    for (const auto& p : r) out.facts.box.add(p);
+  out.facts.height = o.svg_height_mm;
+  auto print = decide_print(cascade, out.facts);
+  if (!print) return print.error();
+  out.print = std::move(*print);
+  if (o.svg_height_mm <= 0) {
+    auto top = height_of_layers(cascade, out.print, o.svg_layers > 0 ? o.svg_layers : 10);
+    if (!top) return Error{o.model, top.error().to_string()};
+    out.facts.height = *top;
+  }
+  auto planned = plan_heights(cascade, out.print, out.facts.height, o.model);
+  if (!planned) return planned.error();
+  out.print.ctx.set(schema::FieldId::PrintHeight, out.facts.height);
+  out.layers = std::move(*planned);
+  for (auto& l : out.layers) l.loops = loops;
+  return out;
 }
 
-// The stages after slicing, shared by STL and SVG input.
-// What the G-code stage needs to know about the model besides its layers.
-struct ModelInfo {
-  double volume_mm3 = 0;
-  geo::BBox2 box;  // XY extent (units); empty: the layers' extent
+Result<Loaded> load_stl(const SliceOptions& o, const ctx::Cascade& cascade, Progress& progress, Report& report) {
+  progress.start("load");
+  auto mesh = geo::load_stl(o.model, report);
+  if (!mesh) return mesh.error();
+  if (auto st = place(*mesh, o.model); !st) return st.error();
+  const geo::MeshTopology topology = geo::build_topology(*mesh);
+  warn_topology(topology, o.model, report);
+  progress.finish(fmt::format("{} triangles", mesh->triangles.size()));
+
+  Loaded out;
+  const geo::BBox3 box = mesh->bbox();
+  out.facts.height = box.max.z;
+  out.facts.volume = mesh->volume();
+  out.facts.box.add(geo::to_point(box.min.x, box.min.y));
+  out.facts.box.add(geo::to_point(box.max.x, box.max.y));
+  auto print = decide_print(cascade, out.facts);
+  if (!print) return print.error();
+  out.print = std::move(*print);
+  auto layers = plan_heights(cascade, out.print, box.max.z, o.model);
+  if (!layers) return layers.error();
+  out.layers = std::move(*layers);
+
+  progress.start("slice", out.layers.size());
+  geo::SliceParams params;
+  params.progress = [&](size_t done) { progress.update(done); };
+  auto stats = geo::slice_mesh(*mesh, topology, out.layers, params, report);
+  if (!stats) return Error{o.model + ": " + stats.error().where, stats.error().message};
+  progress.finish(fmt::format("{} layers, {} loops", out.layers.size(), stats->loops));
+  out.triangles = mesh->triangles.size();
+  return out;
+}
+
+// The outputs of a run, open while the layers are written.
+struct Outputs {
+  std::unique_ptr<gcode::GcodeWriter> gcode;
+  std::unique_ptr<exports::LayersSvg> svg;
+  std::unique_ptr<exports::LayersJson> json;
+  exports::Sheet sheet;
 };
 
-Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summary,
-                            geo::FillAngleScript* script, const SliceOptions& options, Progress& progress,
-                            const ctx::Cascade& cascade, const ModelInfo& model, Report& report) {
+Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& setup, const ctx::Cascade& cascade,
+                             const std::vector<geo::Layer>& resolved) {
+  Outputs out;
+  if (!o.output_gcode.empty()) {
+    gcode::GcodeInfo info;
+    info.model_name = o.model;
+    info.sets = o.sets;
+    if (o.profile)
+      info.notes.push_back(fmt::format("profile: stdlib defaults, printer {}, material {}", o.printer, o.material));
+    for (const auto& r : o.rules) info.notes.push_back("rules: " + r);
+    auto g = gcode::GcodeWriter::open(o.output_gcode, setup, cascade.executors(), info);
+    if (!g) return g.error();
+    out.gcode = std::move(*g);
+  }
+  if (!o.export_svg.empty()) {
+    out.sheet = exports::sheet_layout(resolved, true);
+    auto s = exports::LayersSvg::open(o.export_svg, o.model, setup.layers.size(), out.sheet, true);
+    if (!s) return s.error();
+    out.svg = std::move(*s);
+  }
+  if (!o.export_layers.empty()) {
+    auto j = exports::LayersJson::open(o.export_layers, o.model, setup.layers.size(), true, o.exact_cells);
+    if (!j) return j.error();
+    out.json = std::move(*j);
+  }
+  return out;
+}
+
+// The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
+// angles, then every layer planned and written.
+Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScript* script,
+                            const SliceOptions& options, Progress& progress, ctx::Cascade& cascade, Report& report) {
   auto tick = [&](size_t done) { progress.update(done); };
+  std::vector<geo::Layer>& layers = in.layers;
   // Islands (geometry/polygon): SVG input arrives with its overlap mode already applied.
   geo::ResolveOptions resolve;
   const bool boolean = options.overlap == OverlapMode::Boolean && !ends_with_svg(options.model);
@@ -136,75 +277,47 @@ Result<SliceSummary> finish(std::vector<geo::Layer>& layers, SliceSummary summar
                  "nothing to print: no layer has any material (a surface without volume?); check that the "
                  "model is a closed solid"};
 
+  auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
+  if (!setup) return setup.error();
+  std::unique_ptr<geo::ScriptAngles> angles;
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
     progress.start("fill angles");
-    if (auto st = geo::apply_fill_angle_script(*script, layers); !st) return st.error();
+    auto a = geo::ScriptAngles::compute(*script, (*setup)->layers, cascade, (*setup)->print_ctx, in.print.props);
+    if (!a) return a.error();
+    angles = std::move(*a);
+    cascade.set_middle(angles.get());
     progress.finish();
   }
-  if (!options.export_svg.empty() || !options.export_layers.empty()) {
-    // Monotone cells at each island's fill angle, for the exports. The G-code stage cuts each
-    // island's fill region (inside its perimeters) at the angle the rules decide, on its own.
-    progress.start("cells", layers.size());
-    if (auto st = geo::decompose_layers(layers, nullptr, &report, tick); !st) return st.error();
-    progress.finish();
-  } else {
-    for (auto& l : layers)
-      for (auto& is : l.islands)
-        if (std::isnan(is.fill_angle_deg)) is.fill_angle_deg = geo::default_fill_angle(l.index);
-  }
-
+  auto outputs = open_outputs(options, **setup, cascade, layers);
+  if (!outputs) return outputs.error();
+  LayerOutputs lo;
+  lo.gcode = outputs->gcode.get();
+  lo.svg = outputs->svg.get();
+  lo.sheet = &outputs->sheet;
+  lo.json = outputs->json.get();
+  lo.resolved = layers;
+  lo.exact_cells = options.exact_cells;
+  progress.start("toolpaths", layers.size());
+  if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();
   summary.layers = static_cast<int>(layers.size());
-  if (!options.export_svg.empty()) {
-    progress.start("svg", layers.size());
-    if (auto st = geo::write_layers_svg(options.export_svg, layers, options.model, tick); !st)
-      return st.error();
-    progress.finish();
-    summary.written.push_back(options.export_svg);
-  }
-  if (!options.export_layers.empty()) {
-    progress.start("json", layers.size());
-    if (auto st = geo::write_layers_json(options.export_layers, layers, options.model, tick); !st)
-      return st.error();
-    progress.finish();
-    summary.written.push_back(options.export_layers);
-  }
-  if (!options.output_gcode.empty()) {
-    progress.start("gcode", layers.size());
-    gcode::GcodeJob job;
-    job.output = options.output_gcode;
-    job.layers = layers;
-    job.rules = cascade.rules();
-    job.model_name = options.model;
-    job.model_volume_mm3 = model.volume_mm3;
-    job.model_box = model.box;
-    job.sets = options.sets;
-    if (options.profile)
-      job.notes.push_back(fmt::format("profile: stdlib defaults, printer {}, material {}", options.printer,
-                                      options.material));
-    for (const auto& r : options.rules) job.notes.push_back("rules: " + r);
-    auto g = gcode::write_gcode(job, report);
+  std::string detail;
+  if (outputs->gcode) {
+    auto g = outputs->gcode->finish();
     if (!g) return g.error();
-    progress.finish(fmt::format("{} layers, {:.2f} m of filament, {}", g->layers, g->filament_mm / 1000,
-                                gcode::format_duration(g->time_s)));
+    detail = fmt::format("{} layers, {:.2f} m of filament, {}", g->layers, g->filament_mm / 1000,
+                         gcode::format_duration(g->time_s));
     summary.written.push_back(options.output_gcode);
   }
+  if (outputs->svg) {
+    if (Status s = outputs->svg->finish(); !s) return s.error();
+    summary.written.push_back(options.export_svg);
+  }
+  if (outputs->json) {
+    if (Status s = outputs->json->finish(); !s) return s.error();
+    summary.written.push_back(options.export_layers);
+  }
+  progress.finish(detail);
   return summary;
-}
-
-// Layer heights from the cascade (layer_height, first_layer_height, --set).
-Result<geo::LayerHeightParams> layer_heights(const ctx::Cascade& cascade, const ctx::Context& print, Status& error) {
-  auto props = cascade.print_props(print);
-  if (!props) return props.error();
-  geo::LayerHeightParams params;
-  params.height = [&cascade, print, p = *props, &error](int index, double z_bottom) {
-    auto h = cascade.layer_height(print, p, index, z_bottom);
-    if (!h) {
-      if (error) error = h.error();
-      return 0.2;
-    }
-    return *h;
-  };
-  return params;
 }
 
 }  // namespace
@@ -238,44 +351,15 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* r
   SliceSummary summary;
   if (svg) {
     progress.start("load");
-    auto layers = svg_layers(options, report);
-    if (!layers) return layers.error();
-    progress.finish(fmt::format("{} layers", layers->size()));
-    return finish(*layers, summary, script.get(), options, progress, **cascade, ModelInfo{}, report);
+    auto loaded = load_svg(options, **cascade, report);
+    if (!loaded) return loaded.error();
+    progress.finish(fmt::format("{} layers", loaded->layers.size()));
+    return finish(*loaded, summary, script.get(), options, progress, **cascade, report);
   }
-
-  progress.start("load");
-  auto mesh = geo::load_stl(options.model, report);
-  if (!mesh) return mesh.error();
-  if (auto st = place(*mesh, options.model); !st) return st.error();
-  const geo::MeshTopology topology = geo::build_topology(*mesh);
-  warn_topology(topology, options.model, report);
-  progress.finish(fmt::format("{} triangles", mesh->triangles.size()));
-
-  const geo::BBox3 box = mesh->bbox();
-  ModelInfo model{mesh->volume(), {}};
-  model.box.add(geo::to_point(box.min.x, box.min.y));
-  model.box.add(geo::to_point(box.max.x, box.max.y));
-  ctx::Context print;
-  print.set(schema::FieldId::PrintHeight, box.max.z);
-  print.set(schema::FieldId::PrintSizeX, box.max.x - box.min.x);
-  print.set(schema::FieldId::PrintSizeY, box.max.y - box.min.y);
-  print.set(schema::FieldId::PrintVolume, model.volume_mm3);
-  Status height_error = ok_status();
-  auto heights = layer_heights(**cascade, print, height_error);
-  if (!heights) return heights.error();
-  auto layers = geo::plan_layer_heights(box.max.z, *heights);
-  if (!height_error) return height_error.error();
-  if (!layers) return Error{options.model, layers.error().to_string()};
-
-  progress.start("slice", layers->size());
-  geo::SliceParams params;
-  params.progress = [&](size_t done) { progress.update(done); };
-  auto stats = geo::slice_mesh(*mesh, topology, *layers, params, report);
-  if (!stats) return Error{options.model + ": " + stats.error().where, stats.error().message};
-  progress.finish(fmt::format("{} layers, {} loops", layers->size(), stats->loops));
-  summary.triangles = mesh->triangles.size();
-  return finish(*layers, summary, script.get(), options, progress, **cascade, model, report);
+  auto loaded = load_stl(options, **cascade, progress, report);
+  if (!loaded) return loaded.error();
+  summary.triangles = loaded->triangles;
+  return finish(*loaded, summary, script.get(), options, progress, **cascade, report);
 }
 
 }  // namespace tranche::pipeline

@@ -1,8 +1,8 @@
-#include "geometry/toolpath/context_fill.h"
+#include "geometry/plan/context_fill.h"
 
 #include <cmath>
 
-namespace tranche::toolpath {
+namespace tranche::plan {
 
 using schema::FieldId;
 
@@ -127,4 +127,4 @@ void IslandsView::bind(ctx::Context& c, const std::vector<IslandPlan>& list) {
   }));
 }
 
-}  // namespace tranche::toolpath
+}  // namespace tranche::plan

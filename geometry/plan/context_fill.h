@@ -4,10 +4,10 @@
 
 #include <vector>
 
-#include "geometry/toolpath/plan.h"
+#include "geometry/plan/plan.h"
 #include "runtime/context/context.h"
 
-namespace tranche::toolpath {
+namespace tranche::plan {
 
 void set_layer_fields(ctx::Context& c, const LayerPlan& layer, int islands);
 void set_island_fields(ctx::Context& c, const IslandPlan& island);
@@ -30,4 +30,4 @@ struct IslandsView {
   void bind(ctx::Context& c, const std::vector<IslandPlan>& list);
 };
 
-}  // namespace tranche::toolpath
+}  // namespace tranche::plan

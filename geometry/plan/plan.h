@@ -1,11 +1,12 @@
 // The plan of one layer: every path in print order with its decisions, ready to be written.
 // Layers are planned in parallel (layer_loop.h) and written in order (geometry/gcode), so a plan
 // holds everything the writer needs and nothing that depends on another layer's plan.
-// Coordinates are model units (1 nm); the writer adds the bed offset.
+// Coordinates are model units (1 nm); the writer adds the bed offset (PrintSetup::shift).
 #pragma once
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geometry/core/geom.h"
@@ -13,10 +14,12 @@
 #include "runtime/schema/schema.h"
 
 namespace tranche::toolpath {
-
 class Comber;
+}
 
-// One step of a replacer's output (`move to`, `gcode`, `comment`, `default`).
+namespace tranche::plan {
+
+// One step of a replacer's output (`move to`, `gcode`, `comment`, `default`, `retract`).
 struct Op {
   enum class Kind : uint8_t { Extrude, Travel, Text, Default, Retract };
   Kind kind = Kind::Text;
@@ -25,6 +28,17 @@ struct Op {
   float flow = 1;       // ratio
   float width = 0.45f;  // mm
   std::string text;     // Text: a whole G-code line
+
+  static Op line(std::string_view gcode) {
+    Op o;
+    o.text = std::string(gcode);
+    return o;
+  }
+  static Op of(Kind k) {
+    Op o;
+    o.kind = k;
+    return o;
+  }
 };
 
 // Speed and flow of one piece (or of every piece when decided once per path).
@@ -96,7 +110,7 @@ struct LayerPlan {
   double extruded_mm3 = 0;  // plastic volume
   bool slowed = false;      // min_layer_time slowed it down
   // The layer's material for routing travels inside it (the writer combs the layer change).
-  std::shared_ptr<const Comber> comber;
+  std::shared_ptr<const toolpath::Comber> comber;
 };
 
-}  // namespace tranche::toolpath
+}  // namespace tranche::plan

@@ -5,9 +5,9 @@
 //   op(const IslandPlan*, const PathPlan*, const Op&)   (replacer output other than `default`)
 #pragma once
 
-#include "geometry/toolpath/plan.h"
+#include "geometry/plan/plan.h"
 
-namespace tranche::toolpath {
+namespace tranche::plan {
 
 template <class V>
 void walk_path(const IslandPlan* isl, const PathPlan& p, V& v) {
@@ -71,4 +71,4 @@ void walk_layer(const LayerPlan& layer, V& v) {
   }
 }
 
-}  // namespace tranche::toolpath
+}  // namespace tranche::plan

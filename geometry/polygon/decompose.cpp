@@ -245,34 +245,15 @@ Result<std::vector<Cell>> decompose_region(const Rings& region, double angle_deg
   return cells;
 }
 
-double default_fill_angle(int layer_index) { return layer_index % 2 == 0 ? 45.0 : 135.0; }
-
-Status decompose_island(Island& island, double angle_deg, DecomposeStats* stats) {
-  auto cells = decompose(island.shape, angle_deg, stats);
-  if (!cells) return cells.error();
-  island.fill_angle_deg = angle_deg;
-  island.cells = std::move(*cells);
-  return ok_status();
-}
-
-Status decompose_layer(Layer& layer, DecomposeStats* total) {
-  for (size_t i = 0; i < layer.islands.size(); ++i) {
-    Island& is = layer.islands[i];
-    const double angle = std::isnan(is.fill_angle_deg) ? default_fill_angle(layer.index) : is.fill_angle_deg;
-    DecomposeStats s;
-    Status st = decompose_island(is, angle, &s);
-    if (!st) {
-      const Error& e = st.error();
-      return Error{fmt::format("layer {} island {}{}{}", layer.index, i, e.where.empty() ? "" : " ", e.where),
-                   e.message};
-    }
-    if (total) {
-      total->sweep_cells += s.sweep_cells;
-      total->cells += s.cells;
-      total->cuts += s.cuts;
-    }
+Result<std::vector<Cell>> decompose_island(const Layer& layer, size_t island, double angle_deg,
+                                           DecomposeStats* stats) {
+  auto cells = decompose(layer.islands[island].shape, angle_deg, stats);
+  if (!cells) {
+    const Error& e = cells.error();
+    return Error{fmt::format("layer {} island {}{}{}", layer.index, island, e.where.empty() ? "" : " ", e.where),
+                 e.message};
   }
-  return ok_status();
+  return cells;
 }
 
 }  // namespace tranche::geo

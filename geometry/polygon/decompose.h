@@ -28,13 +28,8 @@ Result<std::vector<Cell>> decompose(const Polygon& shape, double angle_deg, Deco
 Result<std::vector<Cell>> decompose_region(const Rings& region, double angle_deg,
                                            DecomposeStats* stats = nullptr);
 
-// The default fill angle: 45° on even layers, 135° on odd ones (perpendicular layer to layer).
-double default_fill_angle(int layer_index);
-
-// Fills island.cells for `angle_deg` and records the angle in island.fill_angle_deg.
-Status decompose_island(Island& island, double angle_deg, DecomposeStats* stats = nullptr);
-
-// Decomposes every island of the layer at its fill_angle_deg, or the default when it is NaN.
-Status decompose_layer(Layer& layer, DecomposeStats* total = nullptr);
+// The cells of island `island` of `layer` (errors name the layer and island).
+Result<std::vector<Cell>> decompose_island(const Layer& layer, size_t island, double angle_deg,
+                                           DecomposeStats* stats = nullptr);
 
 }  // namespace tranche::geo

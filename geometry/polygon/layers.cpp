@@ -40,26 +40,27 @@ Status resolve_layers(std::vector<Layer>& layers, const ResolveOptions& options,
   return st;
 }
 
-Status decompose_layers(std::vector<Layer>& layers, DecomposeStats* total, Report* report,
-                        const LayerProgress& progress) {
+Result<std::vector<LayerCells>> decompose_layers(const std::vector<Layer>& layers, const IslandAngle& angle,
+                                                 DecomposeStats* total, Report* report,
+                                                 const LayerProgress& progress) {
+  std::vector<LayerCells> out(layers.size());
   std::vector<DecomposeStats> stats(layers.size());
   std::vector<Report> local(layers.size());
-  Status st = each_layer(layers.size(), progress, [&](size_t i) {
-    Layer& layer = layers[i];
-    if (!report) return decompose_layer(layer, &stats[i]);
+  Status st = each_layer(layers.size(), progress, [&](size_t i) -> Status {
+    const Layer& layer = layers[i];
+    out[i].resize(layer.islands.size());
     for (size_t k = 0; k < layer.islands.size(); ++k) {
-      Island& is = layer.islands[k];
-      const double angle =
-          std::isnan(is.fill_angle_deg) ? default_fill_angle(layer.index) : is.fill_angle_deg;
+      const double a = angle(layer, k);
       DecomposeStats s;
-      if (Status d = decompose_island(is, angle, &s); !d) {
-        is.fill_angle_deg = angle;
-        is.cells.clear();
+      auto cells = decompose_island(layer, k, a, &s);
+      if (!cells) {
+        if (!report) return cells.error();
         local[i].warn("decompose-failed", fmt::format("layer {} island {}", layer.index, k),
-                      fmt::format("the island could not be cut into cells at {}° ({}); it has no cells",
-                                  angle, d.error().to_string()));
+                      fmt::format("the island could not be cut into cells at {}° ({}); it has no cells", a,
+                                  cells.error().message));
         continue;
       }
+      out[i][k] = std::move(*cells);
       stats[i].sweep_cells += s.sweep_cells;
       stats[i].cells += s.cells;
       stats[i].cuts += s.cuts;
@@ -79,7 +80,8 @@ Status decompose_layers(std::vector<Layer>& layers, DecomposeStats* total, Repor
       total->cuts += s.cuts;
     }
   }
-  return st;
+  if (!st) return st.error();
+  return out;
 }
 
 }  // namespace tranche::geo

@@ -1,5 +1,7 @@
 #include "runtime/context/cascade.h"
 
+#include <algorithm>
+
 namespace tranche::ctx {
 
 Result<std::unique_ptr<Cascade>> Cascade::create(const std::vector<std::pair<std::string, std::string>>& sets,
@@ -9,28 +11,45 @@ Result<std::unique_ptr<Cascade>> Cascade::create(const std::vector<std::pair<std
   if (!o) return o.error();
   std::unique_ptr<Cascade> c(new Cascade());
   c->overrides_ = std::move(*o);
-  c->chain_.add(rules);
-  c->chain_.add(&c->overrides_);
-  c->rules_.executors = executors;
-  c->rules_.replacers = replacers;
-  c->rules_.defaults = &c->defaults_;
-  c->rules_.decider = &c->chain_;
+  c->rules_ = rules;
+  c->executors_ = executors;
+  c->replacers_ = replacers;
   return c;
 }
 
-Status Cascade::decide(schema::Stage stage, const Context& c, PropertyValues& props) const {
-  Context cc = c;
-  cc.set_props(&props);
-  if (rules_.defaults)
-    if (Status s = rules_.defaults->decide(stage, cc, props); !s) return s;
-  if (rules_.decider)
-    if (Status s = rules_.decider->decide(stage, cc, props); !s) return s;
+Status Cascade::decide(schema::Stage stage, Context& c, PropertyValues& props) const {
+  c.set_props(&props);
+  for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
+                           static_cast<const Decider*>(&overrides_)})
+    if (d)
+      if (Status s = d->decide(stage, c, props); !s) return s;
   return ok_status();
+}
+
+Status Cascade::decide_defaults(schema::Stage stage, Context& c, PropertyValues& props) const {
+  c.set_props(&props);
+  return defaults_.decide(stage, c, props);
+}
+
+schema::Level Cascade::varies_at(schema::Stage stage) const {
+  schema::Level l = schema::Level::Print;
+  for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
+                           static_cast<const Decider*>(&overrides_)})
+    if (d) l = std::max(l, d->varies_at(stage));
+  return l;
+}
+
+bool Cascade::reads(schema::FieldId field) const {
+  for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
+                           static_cast<const Decider*>(&overrides_)})
+    if (d && d->reads(field)) return true;
+  return (executors_ && executors_->reads(field)) || (replacers_ && replacers_->reads(field));
 }
 
 Result<PropertyValues> Cascade::print_props(const Context& print_ctx) const {
   PropertyValues p = PropertyValues::schema_defaults();
-  if (Status s = decide(schema::Stage::Print, print_ctx, p); !s) return s.error();
+  Context c = print_ctx;
+  if (Status s = decide(schema::Stage::Print, c, p); !s) return s.error();
   return p;
 }
 

@@ -1,7 +1,7 @@
 // The extension points the rule VM implements: a Decider sets properties at each stage,
 // Executors add G-code before/after elements, Replacers produce an element's output instead of
-// the default. The slicing loop calls them with the context of the element at hand; without
-// rules it uses the built-in defaults (defaults.h) and the --set overrides (overrides.h).
+// the default. The cascade (cascade.h) orders the deciders; the slicing loop reaches all three
+// through it, with the context of the element at hand.
 //
 // Threading: layers are planned in parallel, so every method may be called concurrently from
 // several threads with different contexts; implementations keep no mutable shared state.
@@ -31,20 +31,6 @@ class Decider {
   // Whether any decision reads `field`. Fields nobody reads and that are costly to compute
   // (island.supported, island.covered, piece.overhang) are then left at 0.
   virtual bool reads(schema::FieldId) const { return true; }
-};
-
-// Applies several deciders in cascade order (later ones see and override earlier ones).
-class DeciderChain final : public Decider {
- public:
-  void add(const Decider* d) {
-    if (d) chain_.push_back(d);
-  }
-  Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
-  schema::Level varies_at(schema::Stage stage) const override;
-  bool reads(schema::FieldId field) const override;
-
- private:
-  std::vector<const Decider*> chain_;
 };
 
 // Where executor and replacer output goes: G-code text lines, without the newline.
@@ -109,16 +95,6 @@ class Replacers {
   // Runs the replacer that matches the element, if any, and returns whether one did (false:
   // the default output is used). An altered element is not offered to replacers again.
   virtual Result<bool> replace(schema::Level level, const Context& ctx, ReplaceApi& api) const = 0;
-};
-
-// Everything the loop consults, in cascade order: schema defaults < `defaults` (the built-in
-// table, later stdlib/defaults.rules) < the fill-angle script (island.fill_angle_deg) <
-// `decider` (the user's rules, then --set). Any of them may be null.
-struct Rules {
-  const Decider* defaults = nullptr;
-  const Decider* decider = nullptr;
-  const Executors* executors = nullptr;
-  const Replacers* replacers = nullptr;
 };
 
 }  // namespace tranche::ctx

@@ -25,10 +25,13 @@ COMPONENTS = [
     ("geometry/slice", ["geometry/mesh"]),
     ("geometry/polygon", ["geometry/core"]),
     ("geometry/io", ["geometry/polygon", "geometry/slice"]),
+    ("geometry/toolpath", ["geometry/polygon", "runtime/schema"]),
     ("geometry/fillangle", ["geometry/core", "runtime/context"]),
-    ("geometry/toolpath", ["geometry/polygon", "runtime/context"]),
-    ("geometry/gcode", ["geometry/toolpath"]),
-    ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
+    ("geometry/setup", ["geometry/toolpath", "runtime/context"]),
+    ("geometry/plan", ["geometry/setup"]),
+    ("geometry/gcode", ["geometry/plan"]),
+    ("geometry/export", ["geometry/plan", "geometry/io"]),
+    ("geometry/pipeline", ["geometry/export", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
     ("apps", ["geometry/pipeline", "compiler"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")

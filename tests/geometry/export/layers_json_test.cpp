@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "geometry/io/text_out.h"
-#include "geometry/io/layers_json.h"
+#include "geometry/export/layers_json.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
@@ -22,6 +22,7 @@
 
 using namespace tranche;
 using namespace tranche::geo;
+using namespace tranche::exports;
 
 namespace {
 
@@ -186,7 +187,7 @@ SCENARIO("the layers JSON of a plate with holes parses back exactly") {
   REQUIRE(write_layers_json(path.string(), layers, "plate \"quoted\".stl").ok());
   Json j = Parser(read(path)).parse();
   CHECK(j["format"].str() == "tranche-layers");
-  CHECK(j["version"].num() == 1);
+  CHECK(j["version"].num() == 2);
   CHECK(j["units"].str() == "mm");
   CHECK(j["source"].str() == "plate \"quoted\".stl");
   REQUIRE(j["layer_count"].num() == layers.size());

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "geometry/io/svg_export.h"
+#include "geometry/export/layers_svg.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
@@ -16,6 +16,7 @@
 
 using namespace tranche;
 using namespace tranche::geo;
+using namespace tranche::exports;
 
 namespace {
 
@@ -62,7 +63,7 @@ SCENARIO("the SVG contact sheet of a sliced model") {
     CHECK(std::string(svg.attribute("xmlns").value()) == "http://www.w3.org/2000/svg");
     CHECK(std::string(svg.attribute("xmlns:tranche").value()) == kTrancheSvgNamespace);
     CHECK(std::string(svg.attribute("tranche:format").value()) == "tranche-layers-svg");
-    CHECK(svg.attribute("tranche:version").as_int() == 1);
+    CHECK(svg.attribute("tranche:version").as_int() == 2);
     CHECK(svg.attribute("tranche:layers").as_int() == static_cast<int>(layers.size()));
     CHECK(std::string(svg.attribute("tranche:source").value()) == "a<b>&c.stl");
     CHECK(std::string(svg.attribute("viewBox").value()).rfind("0 0 ", 0) == 0);

@@ -37,7 +37,7 @@ std::vector<geo::Layer> layers() {
     ls[static_cast<size_t>(i)].z_top = 0.2 * (i + 1);
   }
   auto add = [](geo::Layer& l, geo::Polygon p) {
-    l.islands.push_back({p, geo::area_mm2(p), std::nan(""), {}});
+    l.islands.push_back({p, geo::area_mm2(p)});
   };
   add(ls[0], square(0, 0, 10));
   add(ls[1], square(0, 0, 10));
@@ -65,15 +65,49 @@ Result<double> angle_of(const std::string& source, int layer = 1, int island = 1
   c.island_count = static_cast<int>(l.islands.size());
   c.area = l.islands[static_cast<size_t>(island)].area_mm2;
   c.shape = &l.islands[static_cast<size_t>(island)].shape;
+  c.default_angle = layer % 2 == 0 ? 45 : 135;  // as the cascade gives it (see "as a layer of the cascade")
   return (*script)->angle(c);
+}
+
+// The script's angles over `ls`, as a layer of a cascade of defaults only.
+Result<std::unique_ptr<geo::ScriptAngles>> angles(geo::FillAngleScript& script, const std::vector<geo::Layer>& ls) {
+  static auto cascade = ctx::Cascade::create({});
+  return geo::ScriptAngles::compute(script, ls, **cascade, ctx::Context(), ctx::PropertyValues::schema_defaults());
 }
 
 }  // namespace
 
-TEST_CASE("default fill angle alternates 45 and 135 degrees") {
-  CHECK(geo::default_fill_angle_deg(0) == 45);
-  CHECK(geo::default_fill_angle_deg(1) == 135);
-  CHECK(geo::default_fill_angle_deg(10) == 45);
+TEST_CASE("fill-angle script: a layer of the cascade between the built-in defaults and the rules") {
+  if (!geo::FillAngleScript::available()) return;
+  tranche::test::TempDir dir("fill-angle");
+  // The default it sees is the cascade's (45° / 135°), and its angle is what rules then override.
+  auto script = geo::FillAngleScript::load(
+      write(dir, "d.py", "def fill_angle(ctx):\n    return ctx.default_angle + ctx.island_index\n"));
+  REQUIRE(script.ok());
+  auto ls = layers();
+  auto a = angles(**script, ls);
+  REQUIRE_MESSAGE(a.ok(), a.error().to_string());
+  CHECK((*a)->angle(0, 0) == 45);
+  CHECK((*a)->angle(1, 0) == 135);
+  CHECK((*a)->angle(1, 1) == 136);
+  CHECK((*a)->angle(2, 0) == 45);
+  auto cascade = ctx::Cascade::create({});
+  REQUIRE(cascade.ok());
+  (*cascade)->set_middle(a->get());
+  ctx::Context c;
+  c.set(schema::FieldId::LayerIndex, 1);
+  c.set(schema::FieldId::IslandIndex, 1);
+  auto props = ctx::PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide(schema::Stage::Island, c, props).ok());
+  CHECK(props[schema::PropId::FillAngle] == 136);
+  CHECK((*a)->varies_at(schema::Stage::Island) == schema::Level::Island);
+  CHECK((*a)->varies_at(schema::Stage::Piece) == schema::Level::Print);
+  auto over = ctx::Cascade::create({{"fill_angle", "10"}});  // --set sits above the script
+  REQUIRE(over.ok());
+  (*over)->set_middle(a->get());
+  props = ctx::PropertyValues::schema_defaults();
+  REQUIRE((*over)->decide(schema::Stage::Island, c, props).ok());
+  CHECK(props[schema::PropId::FillAngle] == 10);
 }
 
 TEST_CASE("fill-angle script: a missing file is an error naming it") {
@@ -97,9 +131,10 @@ TEST_CASE("fill-angle script: built with Python") {
     auto script = geo::FillAngleScript::load(write(dir, "const.py", "def fill_angle(ctx):\n    return 30\n"));
     REQUIRE_MESSAGE(script.ok(), script.error().to_string());
     auto ls = layers();
-    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
-    for (const auto& l : ls)
-      for (const auto& i : l.islands) CHECK(i.fill_angle_deg == 30);
+    auto a = angles(**script, ls);
+    REQUIRE(a.ok());
+    for (size_t l = 0; l < ls.size(); ++l)
+      for (size_t i = 0; i < ls[l].islands.size(); ++i) CHECK((*a)->angle(l, i) == 30);
   }
   SUBCASE("one using the layer index and the default") {
     tranche::test::TempDir dir("fill-angle");
@@ -107,11 +142,12 @@ TEST_CASE("fill-angle script: built with Python") {
         dir, "helicoid.py", "def fill_angle(ctx):\n    return 15.0 * ctx.layer_index + ctx.default_angle\n"));
     REQUIRE(script.ok());
     auto ls = layers();
-    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
-    CHECK(ls[0].islands[0].fill_angle_deg == 45);
-    CHECK(ls[1].islands[0].fill_angle_deg == 150);
-    CHECK(ls[1].islands[1].fill_angle_deg == 150);
-    CHECK(ls[2].islands[0].fill_angle_deg == 75);
+    auto a = angles(**script, ls);
+    REQUIRE(a.ok());
+    CHECK((*a)->angle(0, 0) == 45);
+    CHECK((*a)->angle(1, 0) == 150);
+    CHECK((*a)->angle(1, 1) == 150);
+    CHECK((*a)->angle(2, 0) == 75);
   }
   SUBCASE("the context fields") {
     // Layer 1, island 1: the square (20, 0)-(30, 10) with a 2 x 2 hole; z from 0.2 to 0.4.
@@ -165,8 +201,9 @@ TEST_CASE("fill-angle script: built with Python") {
         dir, "main.py", "import helper_mod_xyz\ndef fill_angle(ctx):\n    return helper_mod_xyz.ANGLE\n"));
     REQUIRE_MESSAGE(script.ok(), script.error().to_string());
     auto ls = layers();
-    REQUIRE(geo::apply_fill_angle_script(**script, ls).ok());
-    CHECK(ls[2].islands[0].fill_angle_deg == 12.5);
+    auto a = angles(**script, ls);
+    REQUIRE(a.ok());
+    CHECK((*a)->angle(2, 0) == 12.5);
   }
   SUBCASE("an exception gives the traceback, the script line and the island") {
     tranche::test::TempDir dir("fill-angle");
@@ -176,7 +213,7 @@ TEST_CASE("fill-angle script: built with Python") {
     auto script = geo::FillAngleScript::load(path);
     REQUIRE(script.ok());
     auto ls = layers();
-    Status s = geo::apply_fill_angle_script(**script, ls);
+    auto s = angles(**script, ls);
     REQUIRE_FALSE(s.ok());
     CHECK(s.error().where == path + ":2");  // the innermost frame in the script
     CHECK(contains(s.error().message, "raised an exception on layer 0, island 0"));
@@ -269,7 +306,7 @@ TEST_CASE("fill-angle script: vertices in the middle of straight edges are left 
   geo::Layer layer;
   layer.index = 0;
   layer.z_top = 0.2;
-  layer.islands.push_back({bar, geo::area_mm2(bar), std::nan(""), {}});
+  layer.islands.push_back({bar, geo::area_mm2(bar)});
   tranche::test::TempDir dir("fill-angle");
   auto script = geo::FillAngleScript::load(write(dir, "n.py", "def fill_angle(ctx):\n    return len(ctx.outer)\n"));
   REQUIRE(script.ok());

@@ -7,10 +7,8 @@
 
 #include "geometry/gcode/layer_text.h"
 #include "geometry/gcode/numbers.h"
-#include "geometry/gcode/print.h"
-#include "runtime/context/defaults.h"
-#include "runtime/context/overrides.h"
-#include "tests/support/fixtures.h"
+#include "geometry/gcode/writer.h"
+#include "tests/support/print_fixture.h"
 
 using namespace tranche;
 using namespace tranche::gcode;
@@ -27,22 +25,6 @@ std::string read(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-geo::Ring square(double x0, double y0, double x1, double y1) {
-  return {geo::to_point(x0, y0), geo::to_point(x1, y0), geo::to_point(x1, y1), geo::to_point(x0, y1)};
-}
-std::vector<geo::Layer> cube_layers(int n, double size) {
-  std::vector<geo::Layer> layers(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    auto& l = layers[static_cast<size_t>(i)];
-    l.index = i;
-    l.z_bottom = 0.2 * i;
-    l.z_top = 0.2 * (i + 1);
-    geo::Island isl;
-    isl.shape.outer = square(0, 0, size, size);
-    l.islands.push_back(isl);
-  }
-  return layers;
 }
 }  // namespace
 
@@ -83,24 +65,25 @@ TEST_CASE("durations as PrusaSlicer writes them") {
   CHECK(format_duration(86400 + 3600) == "1d 1h 0m 0s");
 }
 
-TEST_CASE("write_gcode: a small cube gives a complete file with header values filled in") {
+TEST_CASE("the G-code writer: a small cube gives a complete file with header values filled in") {
   test::TempDir dir("gcode-cube");
-  auto layers = cube_layers(10, 10);
-  ctx::BuiltinDefaults defaults;
-  auto over = ctx::Overrides::parse({{"skirt_loops", "0"}});
-  REQUIRE(over.ok());
-  GcodeJob job;
-  job.output = (dir / "cube.gcode").string();
-  job.layers = layers;
-  job.rules.defaults = &defaults;
-  job.rules.decider = &*over;
-  Report report;
-  auto r = write_gcode(job, report);
+  test::PrintFixture f(test::prism_layers(10, {test::square_mm(0, 0, 10, 10)}), {}, {{"skirt_loops", "0"}});
+  const std::string out = (dir / "cube.gcode").string();
+  auto w = GcodeWriter::open(out, *f.setup, f.cascade->executors(), GcodeInfo{"cube", {}, {}});
+  REQUIRE(w.ok());
+  for (int i = 0; i < 10; ++i) {
+    auto plan = f.plan(i);
+    auto text = format_layer(*f.setup, f.cascade->executors(), plan);
+    REQUIRE(text.ok());
+    REQUIRE((*w)->layer(*text, plan.time_s, plan.height).ok());
+    CHECK_FALSE(std::filesystem::exists(out));  // nothing at the destination until finished
+  }
+  auto r = (*w)->finish();
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
   CHECK(r->layers == 10);
   CHECK(r->filament_mm > 0);
   CHECK(r->time_s > 0);
-  std::string g = read(job.output);
+  std::string g = read(out);
   CHECK(g.find(";LAYER_COUNT:10") != std::string::npos);
   CHECK(g.find(";LAYER:9\n") != std::string::npos);
   CHECK(g.find(";TYPE:External perimeter") != std::string::npos);

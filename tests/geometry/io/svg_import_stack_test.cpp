@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/io/svg_export.h"
+#include "geometry/export/layers_svg.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/simple_islands.h"
@@ -59,7 +59,7 @@ std::vector<geo::Layer> slice(const geo::Mesh& mesh, double layer_height) {
 void check_round_trip(const std::vector<geo::Layer>& layers) {
   tranche::test::TempDir dir("svg-stack");
   std::string path = (dir / "layers.svg").string();
-  REQUIRE(geo::write_layers_svg(path, layers, "model.stl").ok());
+  REQUIRE(exports::write_layers_svg(path, layers, "model.stl").ok());
   Report report;
   auto back = geo::load_svg(path, {}, report);
   REQUIRE_MESSAGE(back.ok(), back.error().to_string());
@@ -96,8 +96,8 @@ TEST_CASE("stack: hand-made layers with holes and an island in a hole, at negati
       {geo::to_point(-5, -5), geo::to_point(-5, 5), geo::to_point(5, 5), geo::to_point(5, -5)});
   geo::Polygon inner;
   inner.outer = {geo::to_point(-1.000001, -1), geo::to_point(1, -1), geo::to_point(1, 1.333333)};
-  a.islands.push_back({sq, geo::area_mm2(sq), 0, {}});
-  a.islands.push_back({inner, geo::area_mm2(inner), 0, {}});
+  a.islands.push_back({sq, geo::area_mm2(sq)});
+  a.islands.push_back({inner, geo::area_mm2(inner)});
   geo::Layer b = a;
   b.index = 1, b.z_bottom = 0.2, b.z_top = 0.35;
   b.islands.pop_back();
@@ -185,8 +185,8 @@ TEST_CASE("stack: edits made in an editor") {
 TEST_CASE("stack: format errors and warnings") {
   auto err = [](const std::string& doc) { return parse_error(doc); };
   Error e = err(stack_doc(layer(0, "0", "0.2", kSquare))
-                    .replace(stack_doc("").find("version=\"1\""), 11, "version=\"2\""));
-  CHECK(contains(e.message, "layer stack version 2 is newer than this reader (version 1)"));
+                    .replace(stack_doc("").find("version=\"1\""), 11, "version=\"3\""));
+  CHECK(contains(e.message, "layer stack version 3 is newer than this reader (version 2)"));
   CHECK(e.where == "test.svg:1:1");
   e = err(stack_doc(layer(0, "0", "0.2", kSquare), "tranche")
               .replace(stack_doc("").find("units=\"mm\""), 10, "units=\"in\""));

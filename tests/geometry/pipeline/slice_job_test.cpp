@@ -39,7 +39,7 @@ std::vector<double> svg_layer_areas(const std::string& path) {
   REQUIRE_MESSAGE(res, res.description());
   std::vector<double> areas;
   for (pugi::xml_node g : doc.child("svg").children("g"))
-    areas.push_back(g.attribute("tranche:area").as_double());
+    if (std::string_view(g.attribute("class").value()) == "layer") areas.push_back(g.attribute("tranche:area").as_double());
   return areas;
 }
 
@@ -65,7 +65,7 @@ SCENARIO("slicing a cube to SVG and JSON") {
     std::ifstream json(o.export_layers);
     std::string first;
     std::getline(json, first);
-    CHECK(first.rfind("{\"format\": \"tranche-layers\", \"version\": 1", 0) == 0);
+    CHECK(first.rfind("{\"format\": \"tranche-layers\", \"version\": 2", 0) == 0);
     CHECK(report.empty());
     CHECK(files_in(dir.path()) == 3);  // no temporary files left behind
   }

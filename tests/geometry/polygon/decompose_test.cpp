@@ -179,19 +179,22 @@ TEST_CASE("decompose: pinch points inside an island") {
   }
 }
 
-TEST_CASE("decompose: default angles and the layer wrapper") {
-  CHECK(default_fill_angle(0) == 45);
-  CHECK(default_fill_angle(1) == 135);
-  CHECK(default_fill_angle(10) == 45);
+TEST_CASE("decompose: the island wrapper names the layer and island") {
   Report rep;
   Layer layer;
   layer.index = 7;
   layer.loops = {rect(0, 0, 10, 10), rect(20, 0, 30, 10)};
   REQUIRE(resolve_layer(layer, {}, rep).ok());
-  layer.islands[1].fill_angle_deg = 30;
-  REQUIRE(decompose_layer(layer).ok());
-  CHECK(layer.islands[0].fill_angle_deg == 135);
-  CHECK(layer.islands[1].fill_angle_deg == 30);
-  CHECK(layer.islands[0].cells.size() == 1);
-  CHECK(layer.islands[1].cells[0].fill_angle_deg == 30);
+  auto c = decompose_island(layer, 1, 30);
+  REQUIRE(c.ok());
+  REQUIRE(c->size() == 1);
+  CHECK((*c)[0].fill_angle_deg == 30);
+  Layer far;
+  far.index = 3;
+  Island bad;
+  bad.shape.outer = rect(0, 0, coord_t{1} << 40, coord_t{1} << 40);  // beyond the sweep's range
+  far.islands.push_back(bad);
+  auto e = decompose_island(far, 0, 45);
+  REQUIRE_FALSE(e.ok());
+  CHECK(e.error().where.rfind("layer 3 island 0", 0) == 0);
 }

@@ -22,6 +22,9 @@ std::vector<Layer> slice(const Mesh& mesh) {
 
 }  // namespace
 
+// 45° on even layers, 135° on odd ones, as the cascade's built-in default.
+const IslandAngle alternate = [](const Layer& l, size_t) { return l.index % 2 == 0 ? 45.0 : 135.0; };
+
 TEST_CASE("layers: two cubes touching along an edge slice into two islands per layer") {
   // Cube A [0,10]^3 and cube B [10,20]x[10,20]x[0,10] share the vertical edge x = y = 10.
   Mesh cubes = box({10, 10, 10});
@@ -34,11 +37,13 @@ TEST_CASE("layers: two cubes touching along an edge slice into two islands per l
     CHECK(l.islands.size() == 2);
     for (const auto& is : l.islands) CHECK(is.area_mm2 == doctest::Approx(100).epsilon(1e-6));
   }
-  REQUIRE(decompose_layers(layers).ok());
-  for (const Layer& l : layers) {
-    for (const auto& is : l.islands) {
-      CHECK(is.fill_angle_deg == default_fill_angle(l.index));
-      CHECK(is.cells.size() == 1);
+  auto cells = decompose_layers(layers, alternate);
+  REQUIRE(cells.ok());
+  for (size_t l = 0; l < layers.size(); ++l) {
+    REQUIRE((*cells)[l].size() == 2);
+    for (const auto& c : (*cells)[l]) {
+      REQUIRE(c.size() == 1);
+      CHECK(c[0].fill_angle_deg == alternate(layers[l], 0));
     }
   }
 }
@@ -49,11 +54,13 @@ TEST_CASE("layers: a plate with holes, resolved and decomposed layer by layer") 
   REQUIRE(resolve_layers(layers, {}, rep).ok());
   CHECK(rep.empty());
   DecomposeStats total;
-  REQUIRE(decompose_layers(layers, &total).ok());
-  for (const Layer& l : layers) {
+  auto cells = decompose_layers(layers, alternate, &total);
+  REQUIRE(cells.ok());
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const Layer& l = layers[i];
     REQUIRE(l.islands.size() == 1);
     CHECK(l.islands[0].shape.holes.size() == 12);
-    CHECK(test::cells_problem(l.islands[0], l.islands[0].cells, l.islands[0].fill_angle_deg) == "");
+    CHECK(test::cells_problem(l.islands[0], (*cells)[i][0], alternate(l, 0)) == "");
   }
   CHECK(total.cells >= static_cast<int>(layers.size()) * 2);
 }
@@ -89,13 +96,14 @@ TEST_CASE("layers: an island that cannot be decomposed is a warning when a repor
   Island good;
   good.shape.outer = test::rect(0, 0, 10, 10);
   layers[1].islands.push_back(good);
-  CHECK_FALSE(decompose_layers(layers).ok());
+  CHECK_FALSE(decompose_layers(layers, alternate).ok());
   Report rep;
   size_t calls = 0;
-  REQUIRE(decompose_layers(layers, nullptr, &rep, [&](size_t) { ++calls; }).ok());
+  auto cells = decompose_layers(layers, alternate, nullptr, &rep, [&](size_t) { ++calls; });
+  REQUIRE(cells.ok());
   CHECK(rep.count("decompose-failed") == 1);
   CHECK(rep.warnings()[0].where == "layer 1 island 0");
-  CHECK(layers[1].islands[0].cells.empty());
-  CHECK(layers[1].islands[1].cells.size() == 1);
+  CHECK((*cells)[1][0].empty());
+  CHECK((*cells)[1][1].size() == 1);
   CHECK(calls == 2);
 }

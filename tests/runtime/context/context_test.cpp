@@ -127,20 +127,63 @@ TEST_CASE("--set: clear errors for unknown keys, bad units and out-of-range valu
   CHECK(err("speed", "").find("missing value") != std::string::npos);
 }
 
-TEST_CASE("--set overrides win over the built-in defaults at the property's stage") {
-  BuiltinDefaults b;
-  auto o = Overrides::parse({{"speed", "33"}, {"fan", "50%"}});
-  REQUIRE(o.ok());
-  DeciderChain chain;
-  chain.add(&b);
-  chain.add(&*o);
+TEST_CASE("the cascade: --set overrides win over the built-in defaults at the property's stage") {
+  auto cascade = Cascade::create({{"speed", "33"}, {"fan", "50%"}});
+  REQUIRE(cascade.ok());
   Context c;
   c.set(FieldId::LayerIndex, 0);
   c.set(FieldId::PathKind, static_cast<double>(PathKind::Infill));
-  CHECK(decided(chain, Stage::Piece, c, PropId::Speed) == 33);
-  CHECK(decided(chain, Stage::Cooling, c, PropId::Fan) == 0.5);
-  CHECK(decided(chain, Stage::Island, c, PropId::FillAngle) == 45);
-  CHECK(chain.varies_at(Stage::Piece) == Level::Path);
+  auto decide = [&](Stage st, PropId id) {
+    PropertyValues p = PropertyValues::schema_defaults();
+    REQUIRE((*cascade)->decide(st, c, p).ok());
+    CHECK(&c.props() == &p);  // rules read the values being decided
+    return p[id];
+  };
+  CHECK(decide(Stage::Piece, PropId::Speed) == 33);
+  CHECK(decide(Stage::Cooling, PropId::Fan) == 0.5);
+  CHECK(decide(Stage::Island, PropId::FillAngle) == 45);
+  c.set(FieldId::LayerIndex, 1);
+  CHECK(decide(Stage::Island, PropId::FillAngle) == 135);  // the built-in alternation, written once
+  CHECK((*cascade)->varies_at(Stage::Piece) == Level::Path);
+}
+
+// A decider that sets one property to a constant at one stage, reading one field.
+struct Fixed final : Decider {
+  Stage stage;
+  PropId prop;
+  double value;
+  FieldId field;
+  Fixed(Stage s, PropId p, double v, FieldId f) : stage(s), prop(p), value(v), field(f) {}
+  Status decide(Stage st, const Context&, PropertyValues& props) const override {
+    if (st == stage) props[prop] = value;
+    return ok_status();
+  }
+  Level varies_at(Stage st) const override { return st == stage ? schema::field(field).level : Level::Print; }
+  bool reads(FieldId f) const override { return f == field; }
+};
+
+TEST_CASE("the cascade's order: defaults < middle (the script) < rules < --set") {
+  Fixed script(Stage::Island, PropId::FillAngle, 30, FieldId::IslandIndex);
+  Fixed rules(Stage::Island, PropId::Perimeters, 4, FieldId::IslandArea);
+  auto cascade = Cascade::create({{"perimeters", "3"}}, &rules);
+  REQUIRE(cascade.ok());
+  Context c;
+  c.set(FieldId::LayerIndex, 1);
+  PropertyValues p = PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide(Stage::Island, c, p).ok());
+  CHECK(p[PropId::FillAngle] == 135);  // no middle layer yet: the built-in default
+  CHECK(p[PropId::Perimeters] == 3);   // --set above the rules
+  (*cascade)->set_middle(&script);
+  p = PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide(Stage::Island, c, p).ok());
+  CHECK(p[PropId::FillAngle] == 30);
+  CHECK((*cascade)->varies_at(Stage::Island) == Level::Island);
+  CHECK((*cascade)->reads(FieldId::IslandIndex));
+  CHECK((*cascade)->reads(FieldId::IslandArea));
+  p = PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide_defaults(Stage::Island, c, p).ok());
+  CHECK(p[PropId::FillAngle] == 135);  // what the script sees as its default
+  CHECK(p[PropId::Perimeters] == 2);
 }
 
 TEST_CASE("deciders say which fields they read, so costly unread fields are skipped") {
@@ -152,11 +195,10 @@ TEST_CASE("deciders say which fields they read, so costly unread fields are skip
   auto o = Overrides::parse({{"speed", "33"}});
   REQUIRE(o.ok());
   CHECK_FALSE(o->reads(FieldId::LayerIndex));
-  DeciderChain chain;
-  chain.add(&*o);
-  CHECK_FALSE(chain.reads(FieldId::PathKind));
-  chain.add(&b);
-  CHECK(chain.reads(FieldId::PathKind));
+  auto cascade = Cascade::create({{"speed", "33"}});
+  REQUIRE(cascade.ok());
+  CHECK((*cascade)->reads(FieldId::PathKind));  // the built-in speed by kind
+  CHECK_FALSE((*cascade)->reads(FieldId::IslandSupported));
 }
 
 TEST_CASE("cascade: layer heights follow first_layer_height, layer_height and --set") {

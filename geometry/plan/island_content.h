@@ -1,0 +1,36 @@
+// What an island prints, before any ordering: perimeters along its real borders, then its fill
+// region split into solid and sparse regions (relations with the layers around it), each
+// zig-zagged into cells (docs/gcode.md, "Cells"); and the skirt of layer 0. Widths are decided per
+// path kind through the Nest; everything else is geometry from geometry/toolpath.
+#pragma once
+
+#include <vector>
+
+#include "geometry/plan/nest.h"
+#include "geometry/plan/plan.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/relations.h"
+
+namespace tranche::plan {
+
+// One fill region's edges, by kind: the order stage joins two zig-zags of a region by a short
+// extrusion only when it stays inside the region.
+struct FillGrid {
+  schema::PathKind kind;
+  toolpath::EdgeGrid grid;
+};
+
+// Sets the island.* fields of `ip` from its shape (mm, mm², bed coordinates with `shift`);
+// island.supported and island.covered, which cost a boolean each, only when `relations`.
+void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, bool relations);
+
+// Builds ip.paths (unordered) and ip.cells from ip.shape and ip.props, at layer height `height_mm`;
+// `regions` gets each fill region's edges. Replaces what ip held before (a replacer's `default`
+// after an `offset` builds the island again).
+Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double height_mm,
+                    std::vector<FillGrid>& regions);
+
+// The skirt of `plan` (layer 0): skirt_loops loops around setup.skirt_around, outermost first.
+Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm);
+
+}  // namespace tranche::plan

@@ -1,0 +1,66 @@
+// Print setup, the stage between the polygon stage and the layer loop: the model's facts
+// measured once (print.height, size, volume), its placement on the bed, the layers every layer
+// task reads (islands simplified once, for all readers), the table of every layer's fields, the
+// skirt's hull, and the context the print's own hooks read. This is where several objects and
+// support regions will join the print: everything a layer task shares is built here.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "base/report.h"
+#include "base/result.h"
+#include "geometry/core/layer.h"
+#include "geometry/toolpath/motion.h"
+#include "runtime/context/cascade.h"
+
+namespace tranche::setup {
+
+// The model as measured before slicing. Lengths mm, volume mm³; `box` in model units.
+struct PrintFacts {
+  double height = 0;  // top of the model after placing it on the bed (z = 0 at its bottom)
+  double volume = 0;  // enclosed by the mesh (0 for drawings)
+  geo::BBox2 box;     // XY extent; empty: the layers' extent (drawings)
+};
+
+// The print context: the print fields (print.height, print.size_x/y, print.volume) of `facts`.
+ctx::Context print_context(const PrintFacts& facts);
+
+// What every layer task shares, read-only. Not movable: print_ctx points into it.
+struct PrintSetup {
+  PrintSetup() = default;
+  PrintSetup(const PrintSetup&) = delete;
+  PrintSetup& operator=(const PrintSetup&) = delete;
+
+  std::vector<geo::Layer> layers;   // islands simplified by simplify_mm; no slicing loops
+  // resolved_index[l][i]: the index of island i of layers[l] among the islands as resolved (a
+  // speck narrower than simplify_mm is dropped, so the two may differ).
+  std::vector<std::vector<uint32_t>> resolved_index;
+  ctx::LayerTable table;            // every layer's layer-level fields, from `layers`
+  ctx::Context print_ctx;           // print fields set (print.layers too), `table` bound
+  ctx::PropertyValues print_props;  // the print stage, decided once
+  geo::Point shift;                 // model units + shift = bed units
+  toolpath::MotionLimits motion;
+  geo::Rings skirt_around;      // what the skirt surrounds: the convex hull of layer 0
+  double simplify_mm = 0.0125;  // mm: island outlines are simplified this much (PrusaSlicer's resolution)
+  // The print's hooks (start and end G-code) and the header read the print's context with layer
+  // 0's layer fields, and layer 0's layer-stage properties (its temperatures).
+  ctx::Context hook_ctx;
+  ctx::PropertyValues hook_props;
+  schema::Flavor flavor = schema::Flavor::Marlin;
+};
+
+// Builds the setup of `layers` (resolved, bottom to top, not empty). `print_ctx` and
+// `print_props` come from print_context() and the cascade's print stage; the model is centred
+// on the bed (a warning names `model_name` when it is larger). Errors: a layer-stage rule that
+// fails on layer 0.
+Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layers, const PrintFacts& facts,
+                                               const ctx::Context& print_ctx,
+                                               const ctx::PropertyValues& print_props,
+                                               const ctx::Cascade& cascade, const std::string& model_name,
+                                               Report& report);
+
+}  // namespace tranche::setup
