@@ -1,6 +1,8 @@
 // Helpers shared by the test suites: where the checkout and the build are, temp files.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -32,8 +34,9 @@ inline std::string read_file(const std::filesystem::path& p) {
 class TempDir {
  public:
   explicit TempDir(const std::string& tag) {
-    path_ = std::filesystem::temp_directory_path() /
-            ("tranche-test-" + tag + "-" + std::to_string(std::rand()) + "-" + std::to_string(counter()++));
+    // The process id keeps suites that CTest runs at once apart (rand() starts alike in each).
+    path_ = std::filesystem::temp_directory_path() / ("tranche-test-" + tag + "-" + std::to_string(::getpid()) +
+                                                      "-" + std::to_string(counter()++));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {

@@ -1,0 +1,114 @@
+// Travel (one retraction policy, in a layer and across a layer change), timing (one time model)
+// and cooling.
+#include <doctest/doctest.h>
+
+#include "geometry/plan/cooling.h"
+#include "geometry/plan/timing.h"
+#include "geometry/plan/travel.h"
+#include "geometry/toolpath/flow.h"
+#include "tests/support/print_fixture.h"
+
+using namespace tranche;
+using plan::TravelPolicy;
+using schema::PathKind;
+using schema::PropId;
+
+namespace {
+
+// A ring-shaped part: a 20 mm square with a 10 mm hole in the middle.
+toolpath::Comber ring_comber() {
+  geo::Ring hole = test::square_mm(5, 5, 15, 15);
+  ClipperLib::ReversePath(hole);
+  return toolpath::Comber({test::square_mm(0, 0, 20, 20), hole});
+}
+
+TravelPolicy policy() {
+  TravelPolicy p;
+  p.retract_mm = 0.8;
+  p.before_mm = 2;
+  p.long_mm = 100;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("travel: short travels never retract; long ones always; between, only when leaving the part") {
+  const toolpath::Comber c = ring_comber();
+  const TravelPolicy p = policy();
+  auto t = plan::route_travel(&c, geo::to_point(1, 1), geo::to_point(2, 1), p);
+  CHECK_FALSE(t.retract);
+  CHECK(t.via.empty());
+  // Across the hole: combed around it, inside the part, so no retraction.
+  t = plan::route_travel(&c, geo::to_point(10, 2), geo::to_point(10, 18), p);
+  CHECK_FALSE(t.retract);
+  CHECK_FALSE(t.via.empty());
+  CHECK(t.length_mm > 16);
+  // Not combed (the skirt, a replaced island): it leaves the part.
+  t = plan::route_travel(nullptr, geo::to_point(10, 2), geo::to_point(10, 18), p);
+  CHECK(t.retract);
+  CHECK(t.via.empty());
+  TravelPolicy never = p;
+  never.retract_mm = 0;
+  CHECK_FALSE(plan::route_travel(nullptr, geo::to_point(10, 2), geo::to_point(10, 18), never).retract);
+  TravelPolicy longer = p;
+  longer.long_mm = 5;
+  CHECK(plan::route_travel(&c, geo::to_point(10, 2), geo::to_point(10, 18), longer).retract);
+}
+
+TEST_CASE("travel: the layer change steps in from a point just outside the layer") {
+  const toolpath::Comber c = ring_comber();
+  const TravelPolicy p = policy();
+  // From 0.3 mm outside the outer wall, across the hole: it steps in, then combs.
+  auto t = plan::route_travel(&c, geo::to_point(10, -0.3), geo::to_point(10, 18), p, 0.45);
+  CHECK_FALSE(t.retract);
+  REQUIRE_FALSE(t.via.empty());
+  CHECK(t.via.front() != geo::to_point(10, -0.3));
+  // Farther out than the tolerance: it retracts.
+  CHECK(plan::route_travel(&c, geo::to_point(10, -3), geo::to_point(10, 18), p, 0.45).retract);
+}
+
+TEST_CASE("timing: one straight extrusion takes its trapezoid; the clamp never goes below min speed") {
+  plan::LayerPlan lp;
+  lp.height = 0.2;
+  plan::IslandPlan ip;
+  plan::PathPlan path;
+  path.kind = PathKind::Infill;
+  path.pts = {geo::to_point(0, 0), geo::to_point(100, 0)};
+  path.pieces = {{50, 1}};
+  ip.paths.push_back(path);
+  lp.islands.push_back(ip);
+  toolpath::MotionLimits m;
+  m.print_accel = 1000;
+  const auto t = plan::layer_time(lp, m, policy(), 0.2);
+  CHECK(t.total_s == doctest::Approx(toolpath::trapezoid_time(100, 50, 0, 0, 1000)));
+  CHECK(t.volume_mm3 == doctest::Approx(100 * toolpath::bead_area_mm2(0.45, 0.2)));
+  CHECK(plan::slowed(50, 0.5, 10) == 25);
+  CHECK(plan::slowed(50, 0.1, 10) == 10);  // not below min_print_speed
+  CHECK(plan::slowed(8, 0.5, 10) == 8);    // unless it already was
+}
+
+TEST_CASE("timing: the layer change counts retract, z and travel") {
+  const TravelPolicy p = policy();
+  toolpath::MotionLimits m;
+  const geo::Point a = geo::to_point(0, 0), b = geo::to_point(30, 0);
+  const double plain = plan::layer_change_time(&a, {}, b, false, 0.2, m, p);
+  CHECK(plain == doctest::Approx(0.2 / m.z_speed + toolpath::trapezoid_time(30, p.travel_speed, 0, 0, m.travel_accel)));
+  CHECK(plan::layer_change_time(&a, {}, b, true, 0.2, m, p) == doctest::Approx(plain + p.retract_time_s()));
+  CHECK(plan::layer_change_time(nullptr, {}, b, false, 0.2, m, p) == doctest::Approx(0.2 / m.z_speed));
+}
+
+TEST_CASE("cooling: the fan once per layer, or per path when a rule reads the path") {
+  {
+    test::PrintFixture f(test::prism_layers(4, {test::square_mm(0, 0, 10, 10)}), {}, {{"skirt_loops", "0"}});
+    auto l0 = f.plan(0), l2 = f.plan(2);
+    for (const auto& p : l0.islands[0].paths) CHECK(p.fan == 0);  // the built-in first layer
+    for (const auto& p : l2.islands[0].paths) CHECK(p.fan == 1);
+  }
+  {
+    test::PrintFixture f(test::prism_layers(4, {test::square_mm(0, 0, 10, 10)}),
+                         "rule when path.kind == infill and layer.time > 0 s { fan = 30% }\n", {{"skirt_loops", "0"}});
+    auto l2 = f.plan(2);
+    for (const auto& p : l2.islands[0].paths) CHECK(p.fan == doctest::Approx(p.kind == PathKind::Infill ? 0.3 : 1.0));
+    CHECK(l2.props[PropId::Fan] == 1);  // per path: the layer's own fan is left as decided
+  }
+}
