@@ -20,7 +20,7 @@ struct TimeVisitor {
   toolpath::MotionClock clock;
   const TravelPolicy& policy;
   double height;
-  double extrude_s = 0, volume = 0;
+  double volume = 0;
   bool started = false;
   geo::Point pos;
   TimeVisitor(const toolpath::MotionLimits& m, const TravelPolicy& p, double h) : clock(m), policy(p), height(h) {}
@@ -45,9 +45,7 @@ struct TimeVisitor {
     pos = to;
   }
   void extrude(const geo::Point& to, double speed, double mm3) {
-    double t0 = clock.seconds();
     clock.move(to, speed, true);
-    extrude_s += clock.seconds() - t0;
     volume += mm3;
     pos = to;
   }
@@ -84,7 +82,7 @@ LayerTime layer_time(const LayerPlan& plan, const toolpath::MotionLimits& motion
   walk_layer(plan, tv);
   LayerTime t;
   t.total_s = tv.clock.finish();
-  t.extrude_s = tv.extrude_s;
+  t.extrude_s = tv.clock.extruding_seconds();
   t.volume_mm3 = tv.volume;
   return t;
 }

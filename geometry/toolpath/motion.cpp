@@ -26,7 +26,9 @@ void MotionClock::start_at(const geo::Point& p) {
 
 void MotionClock::close_pending(double exit_speed) {
   if (!pending_.active) return;
-  total_ += trapezoid_time(pending_.len, pending_.speed, pending_.entry, exit_speed, pending_.accel);
+  const double t = trapezoid_time(pending_.len, pending_.speed, pending_.entry, exit_speed, pending_.accel);
+  total_ += t;
+  if (pending_.extruding) extruding_ += t;
   pending_.active = false;
 }
 
@@ -45,7 +47,7 @@ void MotionClock::move(const geo::Point& p, double speed, bool extruding) {
     close_pending(vj);
     entry = vj;
   }
-  pending_ = {len, speed, ux, uy, extruding ? lim_.print_accel : lim_.travel_accel, entry, true};
+  pending_ = {len, speed, ux, uy, extruding ? lim_.print_accel : lim_.travel_accel, entry, true, extruding};
 }
 
 void MotionClock::pause(double seconds) {

@@ -28,18 +28,21 @@ class MotionClock {
   // Ends the current move at rest; returns the total time in seconds.
   double finish();
   double seconds() const { return total_; }
+  // The part of seconds() spent in extruding moves (a move's time is known once the next one
+  // fixes its exit speed, so read this after finish()).
+  double extruding_seconds() const { return extruding_; }
 
  private:
   struct Pending {
     double len = 0, speed = 0, ux = 0, uy = 0, accel = 0, entry = 0;
-    bool active = false;
+    bool active = false, extruding = false;
   };
   void close_pending(double exit_speed);
 
   MotionLimits lim_;
   geo::Point pos_;
   Pending pending_;
-  double total_ = 0;
+  double total_ = 0, extruding_ = 0;
 };
 
 // Time of one trapezoidal move: length mm, cruise/entry/exit speeds mm/s, acceleration mm/s².
