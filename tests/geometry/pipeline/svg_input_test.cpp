@@ -98,6 +98,25 @@ TEST_CASE("slicing a flat SVG drawing") {
     CHECK(r->layers == 3);
     CHECK(count(layer_lines(o.export_layers), "\"outer\"") == 6);  // a disc and a square per layer
   }
+  // Heights come from the cascade as for an STL: --set layer_height was ignored for drawings.
+  SUBCASE("layer heights from the cascade, by layer count") {
+    o.svg_layers = 4;
+    o.sets = {{"layer_height", "0.1"}};
+    auto r = run(o, report);
+    REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+    CHECK(r->layers == 4);
+    auto ls = layer_lines(o.export_layers);
+    CHECK(count(ls, "\"z_top\": 0.1,") == 1);  // --set layer_height wins on layer 0 too, as for an STL
+    CHECK(count(ls, "\"z_top\": 0.4,") == 1);
+  }
+  SUBCASE("layer heights from the cascade, by height") {
+    o.svg_height_mm = 1;
+    o.sets = {{"layer_height", "0.1"}};
+    auto r = run(o, report);
+    REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+    CHECK(r->layers == 10);
+    CHECK(count(layer_lines(o.export_layers), "\"z_top\": 1,") == 1);
+  }
 }
 
 TEST_CASE("bad SVG input fails with the file's location and writes nothing") {
