@@ -165,19 +165,15 @@ void GcodeWriter::layer_change(const LayerText& t, bool& retract, geo::Ring& via
   via = std::move(tr.via);
 }
 
-Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
+// The layer's text with its marks resolved: fan and temperatures only when they change, the
+// layer change's retraction (not a second time when a replacer's ended the layer below), its
+// combing route and its unretraction.
+std::string GcodeWriter::resolve_marks(const LayerText& t, bool already, bool retract, const geo::Ring& via) {
   const double r = travel_.retract_mm;
-  std::string out;
-  out.reserve(t.text.size() + 256);
-  bool change_retract = false;
-  geo::Ring via;
-  layer_change(t, change_retract, via);
-  // Still retracted from the layer below (a replacer's retract ended it): this layer's first
-  // extrusion unretracts, and the layer change does not retract a second time.
-  const bool already = t.any_move && r > 0 && ends_retracted_;
-  if (already) change_retract = true;
   const long rf = std::lround(travel_.retract_speed * 60);
   const bool rel = S.print_props[PropId::RelativeE] != 0;
+  std::string out;
+  out.reserve(t.text.size() + 256);
   size_t at = 0;
   for (const auto& m : t.marks) {
     out.append(t.text, at, m.offset - at);
@@ -202,7 +198,7 @@ Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
             append_fixed(out, -std::llround(r * 1e5), 5);
             out += '\n';
           }
-        } else if (change_retract) {
+        } else if (retract) {
           out += "G1 E";
           append_fixed(out, -std::llround(r * 1e5), 5);
           out += fmt::format(" F{}\n", rf);
@@ -220,7 +216,7 @@ Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
         }
         break;
       case LayerText::Mark::Kind::LayerUnretract:
-        if (change_retract) {
+        if (retract) {
           out += "G1 E";
           append_fixed(out, rel ? std::llround(r * 1e5) : 0, 5);
           out += fmt::format(" F{}\n", rf);
@@ -229,7 +225,18 @@ Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
     }
   }
   out.append(t.text, at, std::string::npos);
-  if (Status s = file_.write(out); !s) return s;
+  return out;
+}
+
+Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
+  bool change_retract = false;
+  geo::Ring via;
+  layer_change(t, change_retract, via);
+  // Still retracted from the layer below (a replacer's retract ended it): this layer's first
+  // extrusion unretracts, and the layer change does not retract a second time.
+  const bool already = t.any_move && travel_.retract_mm > 0 && ends_retracted_;
+  if (already) change_retract = true;
+  if (Status s = file_.write(resolve_marks(t, already, change_retract, via)); !s) return s;
   // Time: the layer's own estimate, plus the layer change (retract, z, travel, unretract).
   double change = 0;
   if (t.any_move) {

@@ -63,6 +63,7 @@ class GcodeWriter {
   Status executors(ctx::When when, std::string* into = nullptr);
   // Whether the layer change into `t` retracts, and its combing route.
   void layer_change(const LayerText& t, bool& retract, geo::Ring& via) const;
+  std::string resolve_marks(const LayerText& t, bool already, bool retract, const geo::Ring& via);
 
   OutputFile file_;
   const setup::PrintSetup& S;
