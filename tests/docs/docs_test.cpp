@@ -317,3 +317,21 @@ TEST_CASE("docs: relative links in the user documentation point at existing file
   // The README's promise: docs/cli.md exists and is linked.
   CHECK(read(root / "README.md").find("docs/cli.md") != std::string::npos);
 }
+
+TEST_CASE("README.md: the layout table names every code folder and every geometry stage") {
+  const fs::path root = test::source_dir();
+  const std::string readme = read(root / "README.md");
+  const std::string layout = readme.substr(readme.find("## Layout"));
+  for (const char* top : {"base", "runtime", "grammar", "compiler", "geometry", "apps", "stdlib", "examples", "editors",
+                          "tests", "fuzz", "bench", "docs"}) {
+    INFO(top);
+    CHECK(layout.find(std::string("`") + top + "/`") != std::string::npos);
+  }
+  const std::string geometry_row = layout.substr(layout.find("| `geometry/` |"));
+  const std::string row = geometry_row.substr(0, geometry_row.find('\n'));
+  for (const auto& e : fs::directory_iterator(root / "geometry")) {
+    if (!e.is_directory()) continue;
+    INFO(e.path().filename().string());
+    CHECK(row.find("`" + e.path().filename().string() + "`") != std::string::npos);
+  }
+}
