@@ -28,7 +28,8 @@ COMPONENTS = [
     ("geometry/fillangle", ["geometry/core", "runtime/context"]),
     ("geometry/toolpath", ["geometry/polygon", "runtime/context"]),
     ("geometry/gcode", ["geometry/toolpath"]),
-    ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
+    ("geometry/preview", ["geometry/core", "runtime/schema"]),
+    ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "geometry/preview", "runtime/vm"]),
     ("apps", ["geometry/pipeline", "compiler"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
