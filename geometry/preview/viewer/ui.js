@@ -178,7 +178,7 @@
     if (view.mode === 'kind') {
       const count = new Array(meta.kinds.length).fill(0);
       for (const k of view.d.pathKind) count[k]++;
-      box.innerHTML = '<h3>Path kind</h3><ul>' + meta.kinds.map((k, i) => (count[i] ? item(k[2], k[1], count[i] + ' paths') : '')).join('') + '</ul>';
+      box.innerHTML = '<h3>Path kind</h3><ul>' + meta.kinds.map((k, i) => (count[i] ? item(k[2], k[1], count[i] + (count[i] === 1 ? ' path' : ' paths')) : '')).join('') + '</ul>';
     } else if (view.mode === 'rule') {
       const c = view.ruleCategories(), name = view.slot >= 0 ? meta.props[view.slot][0] : '–';
       box.innerHTML = '<h3>Who decided ' + esc(name) + '</h3><ul>' + c.keys.map((k, i) =>

@@ -1,7 +1,9 @@
 // Writes the browser test's page: the fixture vase (fixture_print.h) as a preview, and a JSON of
-// probes (bed points with the colour and the decider the page must show there).
+// probes (bed points with the colour and the decider the page must show there); beside them,
+// empty.html, the preview of a print with no layers.
 //   preview_fixture OUT.html OUT.json [LAYERS]
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -22,6 +24,12 @@ int main(int argc, char** argv) {
   const int layers = argc > 3 ? std::stoi(argv[3]) : 60;
   const PreviewPrint print = fixture::vase_print(layers);
   if (auto st = write_preview_html(argv[1], print); !st) {
+    std::fprintf(stderr, "preview_fixture: %s\n", st.error().to_string().c_str());
+    return 1;
+  }
+  // An empty print (nothing to slice, or every layer empty) must open too.
+  const std::string empty = (std::filesystem::path(argv[1]).parent_path() / "empty.html").string();
+  if (auto st = write_preview_html(empty, PreviewPrint{}); !st) {
     std::fprintf(stderr, "preview_fixture: %s\n", st.error().to_string().c_str());
     return 1;
   }

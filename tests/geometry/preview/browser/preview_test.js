@@ -162,6 +162,17 @@ async function run(browser) {
   check(errors.length === 0, 'no console error', errors.join(' | '));
   check(requests.length === 0, 'no network request', requests.join(' '));
 
+  // A print with no layers opens and says so.
+  const empty = await browser.newPage();
+  const emptyErrors = [];
+  empty.on('pageerror', (e) => emptyErrors.push(String(e)));
+  empty.on('console', (m) => { if (m.type() === 'error') emptyErrors.push(m.text()); });
+  await empty.goto('file://' + path.join(path.dirname(path.resolve(pagePath)), 'empty.html'), { waitUntil: 'load' });
+  await empty.waitForFunction('window.tranchePreview && (window.tranchePreview.ready || window.tranchePreview.error)', { timeout: 30000 });
+  const e = await empty.evaluate(() => ({ error: tranchePreview.error, layers: tranchePreview.layerCount, label: document.getElementById('layer-label').textContent }));
+  check(!e.error && e.layers === 0 && e.label === 'no layers' && emptyErrors.length === 0, 'an empty print opens without an error', JSON.stringify(e) + emptyErrors.join(' | '));
+  await empty.close();
+
   if (screenshotOut) {  // the README's picture: the stacked view, a wall's provenance open
     await page.setViewport({ width: 1000, height: 600, deviceScaleFactor: 1 });
     await api(() => { tranchePreview.setColour('kind'); tranchePreview.setStack(true); });

@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
-# The CTest test of the HTML preview in a real browser: installs puppeteer-core (package-lock.json)
-# into WORK with `npm ci`, writes the fixture page with FIXTURE_EXE, and runs preview_test.js in
-# headless Chromium (/usr/bin/chromium, or $CHROMIUM). Exits 77 (CTest: skipped) with a message
-# when node, npm, Chromium or the npm registry cannot be had; WORK is reused while
-# package-lock.json is unchanged.
+# The CTest test of the HTML preview in a real browser: installs puppeteer-core into WORK
+# (install.sh; exit 77, skipped, when node, npm, Chromium or the registry cannot be had), writes
+# the fixture page with FIXTURE_EXE and runs preview_test.js in headless Chromium.
+# --screenshot also saves the page as the README shows it (docs/images/preview.png).
 #   run.sh WORK FIXTURE_EXE [--screenshot OUT.png]
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -11,39 +10,8 @@ work=${1:?usage: run.sh WORK FIXTURE_EXE [--screenshot OUT.png]}
 fixture=${2:?usage: run.sh WORK FIXTURE_EXE [--screenshot OUT.png]}
 shot=""
 if [[ "${3:-}" == "--screenshot" ]]; then shot=$(realpath -m "${4:?--screenshot needs a file}"); fi
-chromium=${CHROMIUM:-/usr/bin/chromium}
 
-for tool in node npm; do
-  if ! command -v "$tool" >/dev/null 2>&1; then
-    echo "skipped: $tool not found (install Node.js and npm to test the preview in a browser)"
-    exit 77
-  fi
-done
-major=$(node -e 'console.log(process.versions.node.split(".")[0])' 2>/dev/null || echo 0)
-if [[ "$major" -lt 18 ]]; then
-  echo "skipped: node $(node --version 2>/dev/null) is too old (18 or later needed by puppeteer-core)"
-  exit 77
-fi
-if [[ ! -x "$chromium" ]]; then
-  echo "skipped: no Chromium at $chromium (apt-get install chromium, or set CHROMIUM)"
-  exit 77
-fi
-
-mkdir -p "$work"
-cp "$here/package.json" "$here/package-lock.json" "$work/"
-stamp="$work/node_modules/.tranche-lock"
-if ! cmp -s "$here/package-lock.json" "$stamp" 2>/dev/null; then
-  echo "installing puppeteer-core with npm ci in $work"
-  # PUPPETEER_SKIP_DOWNLOAD: Debian's Chromium is used; nothing else is fetched.
-  if ! (cd "$work" && PUPPETEER_SKIP_DOWNLOAD=1 timeout 300 npm ci --no-audit --no-fund --loglevel=error \
-          --fetch-retries=1 --fetch-retry-mintimeout=2000 --fetch-retry-maxtimeout=5000 --fetch-timeout=30000 >npm.log 2>&1); then
-    echo "skipped: npm ci failed (is the npm registry reachable?); last lines of $work/npm.log:"
-    tail -5 "$work/npm.log" | sed 's/^/  /'
-    exit 77
-  fi
-  cp "$here/package-lock.json" "$stamp"
-fi
-
+bash "$here/install.sh" "$work" || exit $?
 if ! "$fixture" "$work/fixture.html" "$work/fixture.json"; then
   echo "FAIL: $fixture could not write the fixture page"
   exit 1
