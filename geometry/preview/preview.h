@@ -36,9 +36,9 @@ struct ChainStep {
   double value = 0;  // in the property's unit (schema::PropInfo::unit): mm/s, ratio, mm, deg
   SourceKind source = SourceKind::SchemaDefault;
   std::string rule;  // rule name ("bridges"); empty for defaults and --set
-  std::string file;  // rules file as given on the command line, or "--set"; empty for defaults
+  std::string file;  // rules file as given on the command line; empty for schema defaults and --set
   int line = 0;      // 1-based line of the assignment; 0 when unknown
-  std::string text;  // the assignment as written ("speed = speed * 50%"), optional
+  std::string text;  // the assignment as written ("speed = speed * 50%", or "flow=0.95" for --set), optional
 };
 
 // The cascade of one property for one path (or piece): defaults first, the decider last.

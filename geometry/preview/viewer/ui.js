@@ -193,7 +193,8 @@
 
   function chainHtml(meta, prop, steps) {
     const unit = meta.props[prop][1], S = meta.strings;
-    const show = (v) => (unit === '' && meta.props[prop][0] !== 'fill_angle' ? fmt(v, 3) : fmt(v, 2) + ' ' + unit);
+    // Ratios are stored as fractions and read as percentages (50% is 0.5), as in the rules.
+    const show = (v) => (unit === '%' ? fmt(v * 100, 1) + ' %' : unit === 'deg' ? fmt(v, 1) + '°' : fmt(v, unit ? 2 : 3) + (unit ? ' ' + unit : ''));
     const items = steps.map((s, i) => {
       const [value, , rule, file, line, text] = s;
       const where = S[file] ? ' <span class="where">' + esc(S[file] + (line ? ':' + line : '')) + '</span>' : '';

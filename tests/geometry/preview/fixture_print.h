@@ -56,7 +56,7 @@ struct Provenances {
 };
 
 inline Provenances provenances() {
-  const SlotChain flow{schema::PropId::Flow, {step(1, SourceKind::SchemaDefault), step(0.95, SourceKind::Set, {}, "--set", 0, "flow=0.95")}};
+  const SlotChain flow{schema::PropId::Flow, {step(1, SourceKind::SchemaDefault), step(0.95, SourceKind::Set, {}, {}, 0, "flow=0.95")}};
   const SlotChain width{schema::PropId::Width, {step(0.45, SourceKind::SchemaDefault)}};
   const SlotChain fan{schema::PropId::Fan, {step(1, SourceKind::SchemaDefault)}};
   const ChainStep outer_default = step(25, SourceKind::BuiltinDefault, "outer perimeter speed", "stdlib/defaults.rules", 14, "speed = 25 mm/s");

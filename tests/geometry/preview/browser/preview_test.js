@@ -9,7 +9,7 @@
 const fs = require('fs');
 const os = require('os');
 const path = require('path');
-const { decodePng } = require('./png');
+const { decodePng, encodePng } = require('./png');
 
 const [modules, pagePath, probesPath, screenshotOut] = process.argv.slice(2);
 const puppeteer = require(path.join(path.resolve(modules), 'puppeteer-core'));
@@ -110,7 +110,7 @@ async function run(browser) {
   let text = await clickAt(slow);
   check(/25\.00 mm\/s[^\n]*outer perimeter speed[\s\S]*12\.50 mm\/s[^\n]*slow walls/.test(text), 'the chain shows 25 mm/s from the default, then 12.5 from slow walls', text);
   check(text.includes('speed = speed * 50%'), 'the chain shows the assignment as written');
-  check(text.includes("--set") && text.includes('flow=0.95'), 'the flow chain shows the --set override');
+  check(/100\.0 % — schema default\n.*95\.0 % — --set flow=0\.95/.test(text), 'the flow chain shows the --set override, in percent', text);
   text = await clickAt({ x: slow.x, y: slow.y + 0.45 });  // the inner perimeter, just inside
   check(text.includes("'pressure advance'") && text.includes('M900 K0.045') && text.includes('before path'), 'an executor shows its rule and G-code', text.slice(0, 400));
   await setLayerBySlider(top.layer);
@@ -174,12 +174,16 @@ async function run(browser) {
   await empty.close();
 
   if (screenshotOut) {  // the README's picture: the stacked view, a wall's provenance open
-    await page.setViewport({ width: 1000, height: 600, deviceScaleFactor: 1 });
+    await page.setViewport({ width: 960, height: 560, deviceScaleFactor: 1 });
     await api(() => { tranchePreview.setColour('kind'); tranchePreview.setStack(true); });
     const wall = probe('outer wall, top');
     await setLayerBySlider(wall.layer);
     await clickAt(wall);
-    await page.screenshot({ path: screenshotOut, type: 'png' });
+    await page.$eval('#side', (side) => { side.scrollTop = side.querySelector('#info table').offsetTop + 80; });  // the chain in view
+    const shot = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
+    fs.writeFileSync(screenshotOut, encodePng(shot));
+    const back = decodePng(fs.readFileSync(screenshotOut));
+    check(back.width === shot.width && near(back.at(500, 300), shot.at(500, 300), 6), 'the saved screenshot reads back');
     console.log('screenshot: ' + screenshotOut);
   }
 }
