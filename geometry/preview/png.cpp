@@ -66,7 +66,7 @@ Result<std::string> encode_png(const Image& img) {
   uLongf size = compressBound(static_cast<uLong>(raw.size()));
   std::string z(size, '\0');
   if (::compress2(reinterpret_cast<Bytef*>(z.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
-                  static_cast<uLong>(raw.size()), 9) != Z_OK)
+                  static_cast<uLong>(raw.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
     return Error{"thumbnail", "zlib could not compress the PNG (out of memory?)"};
   z.resize(size);
   chunk(png, "IDAT", z);

@@ -57,135 +57,161 @@ async function run(browser) {
   check(state.layers === fixture.layers, 'every layer is there', state.layers);
   check(state.layer === fixture.layers - 1, 'the page opens on the top layer', state.layer);
 
+  const t = helpers(page);
+  await t.api(() => tranchePreview.setStack(false));  // top-down: probes are exact bed points
+  await kindColours(t);
+  await sliderAndKeys(t, page);
+  await provenance(t);
+  await colouring(t, page);
+  await retractionsAndZoom(t, page);
+  check(errors.length === 0, 'no console error', errors.join(' | '));
+  check(requests.length === 0, 'no network request', requests.join(' '));
+  await emptyPrint(browser);
+  if (screenshotOut) await readmePicture(t, page);
+}
+
+function helpers(page) {
   const api = (fn, ...args) => page.evaluate(fn, ...args);
-  const setLayerBySlider = (li) => page.$eval('#layer', (el, v) => { el.value = String(v); el.dispatchEvent(new Event('input', { bubbles: true })); }, li);
   const pagePos = (p) => api((x, y) => tranchePreview.toPage(x, y), p.x, p.y);
-  const pixel = async (p) => {
-    const pos = await pagePos(p);
-    const img = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
-    return img.at(Math.round(pos.x), Math.round(pos.y));
-  };
   const infoText = () => page.$eval('#info', (el) => el.innerText);
-  const clickAt = async (p) => { const pos = await pagePos(p); await page.mouse.click(pos.x, pos.y); return infoText(); };
+  return {
+    api,
+    pagePos,
+    infoText,
+    // As a user's drag of the slider does: set its value, fire `input`.
+    setLayer: (li) => page.$eval('#layer', (el, v) => { el.value = String(v); el.dispatchEvent(new Event('input', { bubbles: true })); }, li),
+    // The screenshot's pixel at bed point p on the current layer.
+    pixel: async (p) => {
+      const pos = await pagePos(p);
+      const img = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
+      return img.at(Math.round(pos.x), Math.round(pos.y));
+    },
+    clickAt: async (p) => { const pos = await pagePos(p); await page.mouse.click(pos.x, pos.y); return infoText(); },
+  };
+}
 
-  await api(() => tranchePreview.setStack(false));  // top-down: probes are exact bed points
-
-  // The kinds' colours where the paths are.
+async function kindColours(t) {
   for (const name of ['outer wall, slow', 'outer wall, default', 'infill', 'top solid']) {
     const p = probe(name);
-    await setLayerBySlider(p.layer);
-    const c = await pixel(p);
+    await t.setLayer(p.layer);
+    const c = await t.pixel(p);
     check(near(c, hex(p.colour)), name + ': ' + p.kind + ' is drawn in ' + p.colour + ' at (' + p.x.toFixed(2) + ', ' + p.y.toFixed(2) + ')', rgbText(c));
   }
+}
 
-  // The slider changes the layer drawn: the infill probe's spot is infill on its layer, not on the top one.
+async function sliderAndKeys(t, page) {
+  // The infill probe's spot is infill on its layer, not on the top one.
   const inf = probe('infill'), top = probe('top solid');
-  await setLayerBySlider(inf.layer);
-  const before = await pixel(inf);
-  await setLayerBySlider(top.layer);
-  const after = await pixel(inf), label = await page.$eval('#layer-label', (el) => el.textContent);
+  await t.setLayer(inf.layer);
+  const before = await t.pixel(inf);
+  await t.setLayer(top.layer);
+  const after = await t.pixel(inf), label = await page.$eval('#layer-label', (el) => el.textContent);
   check(near(before, hex(inf.colour)) && !near(after, hex(inf.colour)), 'moving the slider redraws another layer', rgbText(before) + ' then ' + rgbText(after));
   check(label.startsWith('layer ' + top.layer + ' '), 'the layer label follows the slider', label);
-
-  // Keys step through the layers.
+  const layer = () => t.api(() => tranchePreview.layer());
   await page.focus('#view');
   await page.keyboard.press('ArrowDown');
-  check((await api(() => tranchePreview.layer())) === top.layer - 1, 'ArrowDown shows the layer below');
+  check((await layer()) === top.layer - 1, 'ArrowDown shows the layer below');
   await page.keyboard.press('Home');
-  check((await api(() => tranchePreview.layer())) === 0, 'Home shows the first layer');
+  check((await layer()) === 0, 'Home shows the first layer');
   await page.keyboard.press('End');
-  check((await api(() => tranchePreview.layer())) === fixture.layers - 1, 'End shows the top layer');
+  check((await layer()) === fixture.layers - 1, 'End shows the top layer');
+}
 
-  // Clicking a path shows who decided it.
+async function provenance(t) {
   for (const name of ['outer wall, slow', 'outer wall, top', 'outer wall, default', 'overhang piece', 'infill', 'top solid']) {
     const p = probe(name);
-    await setLayerBySlider(p.layer);
-    const text = await clickAt(p);
+    await t.setLayer(p.layer);
+    const text = await t.clickAt(p);
     check(text.includes("'" + p.rule + "'") && text.includes(p.where), name + ': the panel names ' + p.rule + ' at ' + p.where, text.slice(0, 300));
-    const decider = await page.$eval('#info ol.chain li.decider', (el) => el.innerText).catch(() => '');
+    const decider = await t.api(() => (document.querySelector('#info ol.chain li.decider') || {}).innerText || '');
     check(decider.includes(p.rule), name + ': the speed chain ends at the deciding rule', decider);
   }
-  const slow = probe('outer wall, slow');
-  await setLayerBySlider(slow.layer);
-  let text = await clickAt(slow);
+  const slow = probe('outer wall, slow'), top = probe('top solid');
+  await t.setLayer(slow.layer);
+  let text = await t.clickAt(slow);
   check(/25\.00 mm\/s[^\n]*outer perimeter speed[\s\S]*12\.50 mm\/s[^\n]*slow walls/.test(text), 'the chain shows 25 mm/s from the default, then 12.5 from slow walls', text);
   check(text.includes('speed = speed * 50%'), 'the chain shows the assignment as written');
   check(/100\.0 % — schema default\n.*95\.0 % — --set flow=0\.95/.test(text), 'the flow chain shows the --set override, in percent', text);
-  text = await clickAt({ x: slow.x, y: slow.y + 0.45 });  // the inner perimeter, just inside
+  text = await t.clickAt({ x: slow.x, y: slow.y + 0.45 });  // the inner perimeter, just inside
   check(text.includes("'pressure advance'") && text.includes('M900 K0.045') && text.includes('before path'), 'an executor shows its rule and G-code', text.slice(0, 400));
-  await setLayerBySlider(top.layer);
-  text = await clickAt(top);
+  await t.setLayer(top.layer);
+  text = await t.clickAt(top);
   check(/generated by replacer 'ironing pass' fixture\.rules:14/.test(text), 'a replaced path names its replacer', text.slice(-200));
-  text = await clickAt({ x: 123, y: 100 });  // outside the vase, inside the view
+  text = await t.clickAt({ x: 123, y: 100 });  // outside the vase, inside the view
   check(text.includes('Click a path'), 'clicking beside every path clears the panel');
+}
 
-  // Colour by deciding rule: the pixel has the legend's colour for that rule.
-  await api(() => tranchePreview.setColour('rule', 'speed'));
-  await setLayerBySlider(slow.layer);
+async function colouring(t, page) {
+  // By deciding rule: the pixel has the legend's colour for that rule.
+  const slow = probe('outer wall, slow');
+  await t.api(() => tranchePreview.setColour('rule', 'speed'));
+  await t.setLayer(slow.layer);
   const swatch = await page.$$eval('#legend li', (lis) => {
     const li = lis.find((l) => l.textContent.includes("'slow walls' (fixture.rules:4)"));
     return li ? getComputedStyle(li.querySelector('.swatch')).backgroundColor : null;
   });
-  const ruleC = await pixel(slow);
+  const ruleC = await t.pixel(slow);
   check(swatch && swatch === rgbText(ruleC), "colour by rule: the slow wall has the legend's colour for 'slow walls'", swatch + ' vs ' + rgbText(ruleC));
-
-  // Colour by speed: slowest (the overhang, 10 mm/s) at the bottom of the scale, fastest (infill, 80) at the top.
-  await api(() => tranchePreview.setColour('speed'));
-  const ranges = await api(() => JSON.parse(document.getElementById('tranche-data').textContent).ranges);
-  const ov = probe('overhang piece');
-  await setLayerBySlider(ov.layer);
-  const slowest = await pixel(ov);
-  await setLayerBySlider(inf.layer);
-  const fastest = await pixel(inf);
-  check(near(slowest, hex(ranges[0])), 'colour by speed: 10 mm/s is the scale\'s first colour', rgbText(slowest));
-  check(near(fastest, hex(ranges[ranges.length - 1])), 'colour by speed: 80 mm/s is the scale\'s last colour', rgbText(fastest));
+  // By speed: the slowest (the overhang, 10 mm/s) at the bottom of the scale, the fastest (infill, 80) at the top.
+  await t.api(() => tranchePreview.setColour('speed'));
+  const ranges = await t.api(() => JSON.parse(document.getElementById('tranche-data').textContent).ranges);
+  const ov = probe('overhang piece'), inf = probe('infill');
+  await t.setLayer(ov.layer);
+  const slowest = await t.pixel(ov);
+  await t.setLayer(inf.layer);
+  const fastest = await t.pixel(inf);
+  check(near(slowest, hex(ranges[0])), "colour by speed: 10 mm/s is the scale's first colour", rgbText(slowest));
+  check(near(fastest, hex(ranges[ranges.length - 1])), "colour by speed: 80 mm/s is the scale's last colour", rgbText(fastest));
   const legend = await page.$eval('#legend', (el) => el.innerText);
   check(legend.includes('80.0 mm/s') && legend.includes('10.0 mm/s'), 'the speed legend spans 10 to 80 mm/s', legend);
+  await t.api(() => tranchePreview.setColour('kind'));
+}
 
-  // Retractions on request.
-  await api(() => tranchePreview.setColour('kind'));
-  const retract = await api(() => ({ x: 105, y: 90 }));
-  const noDot = await pixel(retract);
+async function retractionsAndZoom(t, page) {
+  const retract = { x: 105, y: 90 };  // where the fixture's layer change starts, retracted
+  const noDot = await t.pixel(retract);
   await page.click('#retractions');
-  const dot = await pixel(retract);
+  const dot = await t.pixel(retract);
   check(!near(noDot, [0xcd, 0x22, 0xd6]) && near(dot, [0xcd, 0x22, 0xd6]), 'retractions are marked on request', rgbText(noDot) + ' then ' + rgbText(dot));
   await page.click('#retractions');
-
-  // Zoom: the wheel zooms about the pointer, and the probe stays under its pixel's colour.
-  const pos = await pagePos(inf);
+  // The wheel zooms about the pointer: the point under it stays, and is still drawn in its colour.
+  const inf = probe('infill');
+  await t.setLayer(inf.layer);
+  const pos = await t.pagePos(inf), mmBefore = (await t.pagePos({ x: inf.x + 1, y: inf.y })).x - pos.x;
   await page.mouse.move(pos.x, pos.y);
   await page.mouse.wheel({ deltaY: -400 });
-  const after2 = await pagePos(inf);
-  check(Math.abs(after2.x - pos.x) < 1 && Math.abs(after2.y - pos.y) < 1, 'the wheel zooms about the pointer');
-  check(near(await pixel(inf), hex(inf.colour)), 'after zooming the infill is still drawn in its colour');
+  const after = await t.pagePos(inf), mmAfter = (await t.pagePos({ x: inf.x + 1, y: inf.y })).x - after.x;
+  check(Math.abs(after.x - pos.x) < 1 && Math.abs(after.y - pos.y) < 1, 'the wheel zooms about the pointer');
+  check(mmAfter > 1.5 * mmBefore, 'the wheel zooms in', mmBefore.toFixed(1) + ' then ' + mmAfter.toFixed(1) + ' px/mm');
+  check(near(await t.pixel(inf), hex(inf.colour)), 'after zooming the infill is still drawn in its colour');
+}
 
-  check(errors.length === 0, 'no console error', errors.join(' | '));
-  check(requests.length === 0, 'no network request', requests.join(' '));
-
-  // A print with no layers opens and says so.
+async function emptyPrint(browser) {
   const empty = await browser.newPage();
-  const emptyErrors = [];
-  empty.on('pageerror', (e) => emptyErrors.push(String(e)));
-  empty.on('console', (m) => { if (m.type() === 'error') emptyErrors.push(m.text()); });
+  const errors = [];
+  empty.on('pageerror', (e) => errors.push(String(e)));
+  empty.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   await empty.goto('file://' + path.join(path.dirname(path.resolve(pagePath)), 'empty.html'), { waitUntil: 'load' });
   await empty.waitForFunction('window.tranchePreview && (window.tranchePreview.ready || window.tranchePreview.error)', { timeout: 30000 });
   const e = await empty.evaluate(() => ({ error: tranchePreview.error, layers: tranchePreview.layerCount, label: document.getElementById('layer-label').textContent }));
-  check(!e.error && e.layers === 0 && e.label === 'no layers' && emptyErrors.length === 0, 'an empty print opens without an error', JSON.stringify(e) + emptyErrors.join(' | '));
+  check(!e.error && e.layers === 0 && e.label === 'no layers' && errors.length === 0, 'a print with no layers opens without an error', JSON.stringify(e) + errors.join(' | '));
   await empty.close();
+}
 
-  if (screenshotOut) {  // the README's picture: the stacked view, a wall's provenance open
-    await page.setViewport({ width: 960, height: 560, deviceScaleFactor: 1 });
-    await api(() => { tranchePreview.setColour('kind'); tranchePreview.setStack(true); });
-    const wall = probe('outer wall, top');
-    await setLayerBySlider(wall.layer);
-    await clickAt(wall);
-    await page.$eval('#side', (side) => { side.scrollTop = side.querySelector('#info table').offsetTop + 80; });  // the chain in view
-    const shot = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
-    fs.writeFileSync(screenshotOut, encodePng(shot));
-    const back = decodePng(fs.readFileSync(screenshotOut));
-    check(back.width === shot.width && near(back.at(500, 300), shot.at(500, 300), 6), 'the saved screenshot reads back');
-    console.log('screenshot: ' + screenshotOut);
-  }
+// The README's picture: the stacked view, an outer wall's provenance open.
+async function readmePicture(t, page) {
+  await page.setViewport({ width: 960, height: 560, deviceScaleFactor: 1 });
+  await t.api(() => { tranchePreview.setColour('kind'); tranchePreview.setStack(true); });
+  const wall = probe('outer wall, top');
+  await t.setLayer(wall.layer);
+  await t.clickAt(wall);
+  await page.$eval('#side', (side) => { side.scrollTop = side.querySelector('#info table').offsetTop + 80; });  // the chain in view
+  const shot = decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
+  fs.writeFileSync(screenshotOut, encodePng(shot));
+  const back = decodePng(fs.readFileSync(screenshotOut));
+  check(back.width === shot.width && near(back.at(500, 300), shot.at(500, 300), 6), 'the saved screenshot reads back');
+  console.log('screenshot: ' + screenshotOut);
 }
 
 main()
