@@ -43,7 +43,7 @@ fi
 
 printf '%-24s %7s %7s %9s %9s %8s %9s %9s %8s\n' "print" "layers" "paths" "points" "size MB" "% of 10" "load ms" "% of 2 s" "step ms"
 for i in "${!names[@]}"; do
-  read -r layers paths points bytes encode thumbs <<<"${stats[$i]}"
+  read -r layers paths points bytes encode thumbs outlines <<<"${stats[$i]}"
   load="-" decode="-" step="-"
   if [[ -n "$loads" ]]; then read -r _ load decode step < <(grep -F "${pages[$i]} " <<<"$loads"); fi
   awk -v n="${names[$i]}" -v l="$layers" -v p="$paths" -v q="$points" -v b="$bytes" -v t="$load" -v s="$step" 'BEGIN {
@@ -52,8 +52,9 @@ for i in "${!names[@]}"; do
   }'
 done
 echo
-printf '%-24s %12s %22s\n' "print" "encode s" "thumbnails s (16 QOI + 300 PNG)"
+echo "thumbnails: 16x16 QOI + 300x300 PNG, rendered from the toolpaths or from the outlines (islands)"
+printf '%-24s %10s %16s %16s\n' "print" "encode s" "toolpaths s" "outlines s"
 for i in "${!names[@]}"; do
-  read -r _ _ _ _ encode thumbs <<<"${stats[$i]}"
-  printf '%-24s %12s %22s\n' "${names[$i]}" "$encode" "$thumbs"
+  read -r _ _ _ _ encode thumbs outlines <<<"${stats[$i]}"
+  printf '%-24s %10s %16s %16s\n' "${names[$i]}" "$encode" "$thumbs" "$outlines"
 done

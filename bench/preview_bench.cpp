@@ -2,7 +2,9 @@
 // toolpaths (until the slicer writes previews itself), and the thumbnails' cost.
 //   preview_bench synthetic OUT.html [LAYERS PATHS POINTS]   default 800 layers, 5000 paths, 1000000 points
 //   preview_bench gcode IN.gcode OUT.html                    the extrusions and travels of a Tranche G-code file
-// Prints one line: layers paths points bytes encode_seconds thumbnail_seconds (16x16/QOI + 300x300/PNG).
+// Prints one line: layers paths points bytes encode_seconds thumbnail_seconds (16x16/QOI + 300x300/PNG
+// from the toolpaths) outline_thumbnail_seconds (the same from the outer perimeters taken as
+// island outlines, as the slicer could before planning any toolpath).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -209,7 +211,23 @@ int main(int argc, char** argv) {
   auto thumbs = thumbnails_gcode(print, specs);
   const double thumb = seconds_since(t0);
   if (!thumbs) return 1;
-  std::printf("%zu %zu %zu %ju %.3f %.3f\n", print.layers.size(), paths, points,
-              static_cast<uintmax_t>(std::filesystem::file_size(out)), encode, thumb);
+  // The outer perimeters as islands (one polygon each, no holes), drawn at each layer's z.
+  std::vector<std::vector<std::pair<geo::Polygon, float>>> outlines(print.layers.size());
+  for (size_t i = 0; i < print.layers.size(); ++i)
+    for (const PreviewPath& p : print.layers[i].paths)
+      if (p.kind == PathKind::OuterPerimeter) {
+        geo::Polygon poly;
+        for (PointMm q : p.points) poly.outer.push_back(geo::to_point(q.x, q.y));
+        outlines[i].push_back({std::move(poly), print.layers[i].z});
+      }
+  t0 = std::chrono::steady_clock::now();
+  auto from_outlines = thumbnails_gcode(print_box(print), [&](HeightCanvas& c) {
+    for (const auto& layer : outlines)
+      for (const auto& [poly, z] : layer) c.add_polygon(poly, 0, 0, z);
+  }, specs);
+  const double outline = seconds_since(t0);
+  if (!from_outlines) return 1;
+  std::printf("%zu %zu %zu %ju %.3f %.3f %.3f\n", print.layers.size(), paths, points,
+              static_cast<uintmax_t>(std::filesystem::file_size(out)), encode, thumb, outline);
   return 0;
 }

@@ -78,20 +78,39 @@ void HeightCanvas::add_layer(const PreviewLayer& layer) {
 }
 
 void HeightCanvas::fill_spans(const std::vector<std::vector<PointMm>>& rings, float z_mm) {
+  // A scanline fill with an edge table: each edge is visited only on the rows it spans.
+  struct Edge {
+    int row0, row1;  // first and last row whose centre it crosses
+    double x0, dxdr;  // x (px) at row0's centre, and per row
+  };
+  std::vector<Edge> edges;
+  for (const auto& ring : rings)
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+      double ax = ox_ + ring[i].x * scale_, ay = oy_ - ring[i].y * scale_;
+      double bx = ox_ + ring[(i + 1) % n].x * scale_, by = oy_ - ring[(i + 1) % n].y * scale_;
+      if (ay == by) continue;
+      if (ay > by) std::swap(ax, bx), std::swap(ay, by);
+      // Rows whose centre y + 0.5 lies in [ay, by): half-open, so a vertex is counted once.
+      const int r0 = std::max(0, static_cast<int>(std::ceil(ay - 0.5))), r1 = std::min(sh_ - 1, static_cast<int>(std::ceil(by - 0.5)) - 1);
+      if (r0 > r1) continue;
+      const double dxdr = (bx - ax) / (by - ay);
+      edges.push_back({r0, r1, ax + (r0 + 0.5 - ay) * dxdr, dxdr});
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.row0 < b.row0; });
+  std::vector<const Edge*> active;
   std::vector<double> xs;
-  for (int y = 0; y < sh_; ++y) {
-    const double by = (oy_ - (y + 0.5)) / scale_;  // the row's centre in bed mm
+  size_t next = 0;
+  const int first = edges.empty() ? sh_ : edges.front().row0;
+  for (int y = first; y < sh_ && (next < edges.size() || !active.empty()); ++y) {
+    while (next < edges.size() && edges[next].row0 == y) active.push_back(&edges[next++]);
+    std::erase_if(active, [y](const Edge* e) { return e->row1 < y; });
     xs.clear();
-    for (const auto& ring : rings)
-      for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const PointMm p = ring[i], q = ring[(i + 1) % n];
-        if ((p.y <= by) != (q.y <= by)) xs.push_back(p.x + (by - p.y) / (q.y - p.y) * (q.x - p.x));
-      }
+    for (const Edge* e : active) xs.push_back(e->x0 + (y - e->row0) * e->dxdr);
     std::sort(xs.begin(), xs.end());
     float* row = &z_[static_cast<size_t>(y) * static_cast<size_t>(sw_)];
     for (size_t k = 0; k + 1 < xs.size(); k += 2) {  // even-odd: outline minus holes
-      const int x0 = std::max(0, static_cast<int>(std::ceil(ox_ + xs[k] * scale_ - 0.5)));
-      const int x1 = std::min(sw_ - 1, static_cast<int>(std::floor(ox_ + xs[k + 1] * scale_ - 0.5)));
+      const int x0 = std::max(0, static_cast<int>(std::ceil(xs[k] - 0.5)));
+      const int x1 = std::min(sw_ - 1, static_cast<int>(std::floor(xs[k + 1] - 0.5)));
       for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], z_mm);
     }
   }

@@ -211,3 +211,21 @@ TEST_CASE("thumbnails: a bad size list says which entry and what to write") {
   CHECK(r.error().message.find("each side must be 1 to 1024 px") != std::string::npos);
   CHECK(parse_thumbnail_specs("")->empty());
 }
+
+TEST_CASE("thumbnails: the rasterizer covers the area it is given") {
+  // 100 px for a 50 mm box, less the 4 % margins: 1.84 px/mm. Coverage (alpha) counts pixels.
+  const double px_per_mm = 0.92 * 100 / 50;
+  auto coverage = [](const Image& img) {
+    double a = 0;
+    for (size_t i = 3; i < img.rgba.size(); i += 4) a += img.rgba[i] / 255.0;
+    return a;
+  };
+  geo::Polygon tri;
+  tri.outer = {geo::to_point(0, 0), geo::to_point(40, 0), geo::to_point(10, 30)};
+  HeightCanvas a(100, 100, BoxMm{0, 0, 50, 50});
+  a.add_polygon(tri, 5, 5, 1);
+  CHECK(coverage(a.shade()) == doctest::Approx(600 * px_per_mm * px_per_mm).epsilon(0.02));
+  HeightCanvas b(100, 100, BoxMm{0, 0, 50, 50});
+  b.add_segment({5, 5}, {45, 35}, 4, 1);  // a 50 mm bead, 4 mm wide: 50·4 + π·2²
+  CHECK(coverage(b.shade()) == doctest::Approx((200 + M_PI * 4) * px_per_mm * px_per_mm).epsilon(0.02));
+}
