@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 
 #include "geometry/preview/base64.h"
@@ -51,10 +52,18 @@ void append_json_string(std::string& out, std::string_view s) {
 }
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.7g}", v) : "null"; }
 
-class Encoder {
+std::string compress(const std::string& raw);
+
+}  // namespace
+
+class PreviewEncoder::Impl {
  public:
+  Impl(float bed_x, float bed_y, std::string title) : bed_x_(bed_x), bed_y_(bed_y), title_(std::move(title)) {}
   Status layer(const PreviewLayer& layer, size_t li);
-  Result<std::string> json(const PreviewPrint& print);
+  Result<std::string> json();
+  size_t layers = 0;
+  std::optional<Error> failed;
+  const std::string& title() const { return title_; }  // the first error: the data is incomplete from there on
 
  private:
   Status path(const PreviewPath& p, const std::string& where);
@@ -73,9 +82,11 @@ class Encoder {
   std::vector<std::shared_ptr<const Provenance>> keep_;  // keeps prov_by_ptr_'s keys alive
   std::string layers_json_;
   size_t paths_ = 0, points_ = 0, travels_ = 0, travel_points_ = 0;
+  float bed_x_, bed_y_;
+  std::string title_;
 };
 
-Status Encoder::point(PointMm p, const std::string& where) {
+Status PreviewEncoder::Impl::point(PointMm p, const std::string& where) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || std::fabs(p.x) > 1e6 || std::fabs(p.y) > 1e6)
     return Error{where, fmt::format("point ({}, {}) mm is not a finite bed coordinate", p.x, p.y)};
   const int64_t x = quantize(p.x, kCoordQuantumMm), y = quantize(p.y, kCoordQuantumMm);
@@ -86,7 +97,7 @@ Status Encoder::point(PointMm p, const std::string& where) {
   return ok_status();
 }
 
-Status Encoder::path(const PreviewPath& p, const std::string& where) {
+Status PreviewEncoder::Impl::path(const PreviewPath& p, const std::string& where) {
   const size_t pieces = p.piece_count();
   if (pieces == 0) return Error{where, fmt::format("{} point(s); a path needs at least 2", p.points.size())};
   auto per_piece = [&](const std::vector<float>& v, const char* name, double quantum, uint32_t flag,
@@ -127,7 +138,7 @@ Status Encoder::path(const PreviewPath& p, const std::string& where) {
   return ok_status();
 }
 
-Status Encoder::layer(const PreviewLayer& layer, size_t li) {
+Status PreviewEncoder::Impl::layer(const PreviewLayer& layer, size_t li) {
   qx_ = qy_ = 0;  // each layer decodes on its own
   for (size_t i = 0; i < layer.paths.size(); ++i)
     if (Status s = path(layer.paths[i], fmt::format("preview: layer {}, path {}", li, i)); !s) return s;
@@ -152,13 +163,13 @@ Status Encoder::layer(const PreviewLayer& layer, size_t li) {
   return ok_status();
 }
 
-int Encoder::string_id(const std::string& s) {
+int PreviewEncoder::Impl::string_id(const std::string& s) {
   auto [it, fresh] = string_ids_.try_emplace(s, static_cast<int>(strings_.size()));
   if (fresh) strings_.push_back(s);
   return it->second;
 }
 
-std::string Encoder::provenance_json(const Provenance& p) {
+std::string PreviewEncoder::Impl::provenance_json(const Provenance& p) {
   std::string j = "{\"s\":[";
   for (size_t i = 0; i < p.slots.size(); ++i) {
     const SlotChain& c = p.slots[i];
@@ -184,7 +195,7 @@ std::string Encoder::provenance_json(const Provenance& p) {
   return j + "}";
 }
 
-int Encoder::provenance_id(const std::shared_ptr<const Provenance>& p) {
+int PreviewEncoder::Impl::provenance_id(const std::shared_ptr<const Provenance>& p) {
   if (!p) return -1;
   if (auto it = prov_by_ptr_.find(p.get()); it != prov_by_ptr_.end()) return it->second;
   std::string j = provenance_json(*p);
@@ -194,6 +205,8 @@ int Encoder::provenance_id(const std::shared_ptr<const Provenance>& p) {
   keep_.push_back(p);
   return it->second;
 }
+
+namespace {
 
 std::string compress(const std::string& raw) {
   uLongf size = compressBound(static_cast<uLong>(raw.size()));
@@ -205,11 +218,13 @@ std::string compress(const std::string& raw) {
   return out;
 }
 
-Result<std::string> Encoder::json(const PreviewPrint& print) {
+}  // namespace
+
+Result<std::string> PreviewEncoder::Impl::json() {
   std::string j = fmt::format("{{\"format\":\"tranche-preview\",\"version\":{},\"title\":", kPreviewFormatVersion);
-  append_json_string(j, print.title);
+  append_json_string(j, title_);
   j += fmt::format(",\"bed\":[{},{}],\"quantum\":{{\"xy\":{},\"width\":{},\"speed\":{},\"flow\":{},\"fan\":{},\"temp\":{}}}",
-                   num(print.bed_x), num(print.bed_y), kCoordQuantumMm, kWidthQuantum, kSpeedQuantum, kFlowQuantum,
+                   num(bed_x_), num(bed_y_), kCoordQuantumMm, kWidthQuantum, kSpeedQuantum, kFlowQuantum,
                    kFanQuantum, kTempQuantum);
   j += ",\"kinds\":[";
   for (int k = 0; k < kPathKindCount; ++k) {
@@ -253,15 +268,35 @@ Result<std::string> Encoder::json(const PreviewPrint& print) {
   return j + "\"}";
 }
 
-}  // namespace
+PreviewEncoder::PreviewEncoder(float bed_x, float bed_y, std::string title)
+    : impl_(std::make_unique<Impl>(bed_x, bed_y, std::move(title))) {}
+PreviewEncoder::~PreviewEncoder() = default;
+PreviewEncoder::PreviewEncoder(PreviewEncoder&&) noexcept = default;
+PreviewEncoder& PreviewEncoder::operator=(PreviewEncoder&&) noexcept = default;
+
+Status PreviewEncoder::add_layer(const PreviewLayer& layer) {
+  if (impl_->failed) return *impl_->failed;
+  if (Status s = impl_->layer(layer, impl_->layers++); !s) {
+    impl_->failed = s.error();
+    return s;
+  }
+  return ok_status();
+}
+
+const std::string& PreviewEncoder::title() const { return impl_->title(); }
+
+Result<std::string> PreviewEncoder::finish() {
+  if (impl_->failed) return *impl_->failed;
+  return impl_->json();
+}
 
 Result<std::string> encode_preview_json(const PreviewPrint& print) {
   if (!std::isfinite(print.bed_x) || !std::isfinite(print.bed_y) || print.bed_x <= 0 || print.bed_y <= 0)
     return Error{"preview", fmt::format("bed size {} x {} mm is not positive", print.bed_x, print.bed_y)};
-  Encoder e;
-  for (size_t i = 0; i < print.layers.size(); ++i)
-    if (Status s = e.layer(print.layers[i], i); !s) return s.error();
-  return e.json(print);
+  PreviewEncoder e(print.bed_x, print.bed_y, print.title);
+  for (const PreviewLayer& layer : print.layers)
+    if (Status s = e.add_layer(layer); !s) return s.error();
+  return e.finish();
 }
 
 }  // namespace tranche::preview

@@ -56,22 +56,38 @@ std::string fill_template(std::string_view html, const std::string& title, const
   return out;
 }
 
-}  // namespace
-
-Result<std::string> preview_html(const PreviewPrint& print) {
-  auto data = encode_preview_json(print);
-  if (!data) return data.error();
-  const std::string title = html_escaped(print.title.empty() ? "Tranche preview" : print.title + " — Tranche preview");
-  return fill_template(assets::viewer_html(), title, *data);
+std::string page(const std::string& title, const std::string& data) {
+  return fill_template(assets::viewer_html(), html_escaped(title.empty() ? "Tranche preview" : title + " — Tranche preview"), data);
 }
 
-Status write_preview_html(const std::string& path, const PreviewPrint& print) {
-  auto html = preview_html(print);
+Status write_page(const std::string& path, const Result<std::string>& html) {
   if (!html) return html.error();
   auto file = OutputFile::create(path, "the preview");
   if (!file) return file.error();
   if (Status s = file->write(*html); !s) return s;
   return file->commit();
+}
+
+}  // namespace
+
+Result<std::string> preview_html(const PreviewPrint& print) {
+  auto data = encode_preview_json(print);
+  if (!data) return data.error();
+  return page(print.title, *data);
+}
+
+Result<std::string> preview_html(PreviewEncoder& encoder) {
+  auto data = encoder.finish();
+  if (!data) return data.error();
+  return page(encoder.title(), *data);
+}
+
+Status write_preview_html(const std::string& path, const PreviewPrint& print) {
+  return write_page(path, preview_html(print));
+}
+
+Status write_preview_html(const std::string& path, PreviewEncoder& encoder) {
+  return write_page(path, preview_html(encoder));
 }
 
 }  // namespace tranche::preview

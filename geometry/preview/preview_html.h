@@ -8,6 +8,7 @@
 
 #include "base/result.h"
 #include "geometry/preview/preview.h"
+#include "geometry/preview/preview_data.h"
 
 namespace tranche::preview {
 
@@ -15,7 +16,12 @@ namespace tranche::preview {
 // embedded at build time) and the data of preview_data.h.
 Status write_preview_html(const std::string& path, const PreviewPrint& print);
 
+// The same from an encoder every layer was added to (the streaming form: the pipeline adds
+// each layer as it goes and keeps none).
+Status write_preview_html(const std::string& path, PreviewEncoder& encoder);
+
 // The page as a string (what write_preview_html writes).
 Result<std::string> preview_html(const PreviewPrint& print);
+Result<std::string> preview_html(PreviewEncoder& encoder);
 
 }  // namespace tranche::preview

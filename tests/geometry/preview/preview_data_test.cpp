@@ -159,3 +159,25 @@ TEST_CASE("preview data: the volumetric rate is the bead's area times speed and 
   CHECK(volumetric_rate_mm3_s(0.45, 0.2, 50, 0.9) == doctest::Approx((0.25 * 0.2 + M_PI * 0.01) * 50 * 0.9));
   CHECK(bead_area_mm2(0.1, 0.2) == doctest::Approx(M_PI * 0.01 / 4));  // narrower than high: round
 }
+
+TEST_CASE("preview data: layer by layer, the encoder writes what the whole print gives, and keeps an error") {
+  const PreviewPrint print = fixture::vase_print(8);
+  PreviewEncoder enc(print.bed_x, print.bed_y, print.title);
+  for (const PreviewLayer& l : print.layers) REQUIRE(enc.add_layer(l).ok());
+  auto streamed = enc.finish();
+  REQUIRE(streamed.ok());
+  CHECK(*streamed == *encode_preview_json(print));
+  CHECK(enc.title() == "fixture vase");
+
+  PreviewEncoder bad(200, 200, "");
+  REQUIRE(bad.add_layer(print.layers[0]).ok());
+  PreviewLayer broken = print.layers[1];
+  broken.paths[1].points.resize(1);
+  auto st = bad.add_layer(broken);
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().to_string() == "preview: layer 1, path 1: 1 point(s); a path needs at least 2");
+  CHECK_FALSE(bad.add_layer(print.layers[2]).ok());  // the data is incomplete from there on
+  auto fin = bad.finish();
+  REQUIRE_FALSE(fin.ok());
+  CHECK(fin.error().to_string() == st.error().to_string());
+}

@@ -51,3 +51,13 @@ TEST_CASE("preview html: the title is escaped, and a file is written whole or no
   auto bad_dir = write_preview_html((dir.path() / "missing" / "p.html").string(), fixture::vase_print(1));
   CHECK_FALSE(bad_dir.ok());
 }
+
+TEST_CASE("preview html: the streaming form writes the same page") {
+  const PreviewPrint print = fixture::vase_print(5);
+  PreviewEncoder enc(print.bed_x, print.bed_y, print.title);
+  for (const PreviewLayer& l : print.layers) REQUIRE(enc.add_layer(l).ok());
+  tranche::test::TempDir dir("preview-stream");
+  const auto out = dir.path() / "s.html";
+  REQUIRE(write_preview_html(out.string(), enc).ok());
+  CHECK(tranche::test::read_file(out) == *preview_html(print));
+}
