@@ -127,9 +127,13 @@ async function provenance(t) {
     const decider = await t.api(() => (document.querySelector('#info ol.chain li.decider') || {}).innerText || '');
     check(decider.includes(p.rule), name + ': the speed chain ends at the deciding rule', decider);
   }
+  const inf = probe('infill');
+  await t.setLayer(inf.layer);
+  let text = await t.clickAt(inf);
+  check(/fill_angle\n45\.0° — schema default\n135\.0° — built-in default 'alternate fill angle'/.test(text), 'the fill angle chain is shown in degrees', text);
   const slow = probe('outer wall, slow'), top = probe('top solid');
   await t.setLayer(slow.layer);
-  let text = await t.clickAt(slow);
+  text = await t.clickAt(slow);
   check(/25\.00 mm\/s[^\n]*outer perimeter speed[\s\S]*12\.50 mm\/s[^\n]*slow walls/.test(text), 'the chain shows 25 mm/s from the default, then 12.5 from slow walls', text);
   check(text.includes('speed = speed * 50%'), 'the chain shows the assignment as written');
   check(/100\.0 % — schema default\n.*95\.0 % — --set flow=0\.95/.test(text), 'the flow chain shows the --set override, in percent', text);
@@ -169,6 +173,14 @@ async function colouring(t, page) {
 }
 
 async function retractionsAndZoom(t, page) {
+  const shot = async () => decodePng(Buffer.from(await page.screenshot({ type: 'png' })));
+  const without = await shot();
+  await page.click('#travels');
+  const withTravels = await shot();
+  await page.click('#travels');
+  let changed = 0;
+  for (let y = 0; y < without.height; y += 2) for (let x = 0; x < without.width; x += 2) changed += !near(without.at(x, y), withTravels.at(x, y), 4);
+  check(changed > 20, 'travels are drawn on request', changed + ' sampled pixels changed');
   const retract = { x: 105, y: 90 };  // where the fixture's layer change starts, retracted
   const noDot = await t.pixel(retract);
   await page.click('#retractions');
