@@ -1,7 +1,8 @@
 // Inputs for bench_preview.sh: previews of a made-up bunny-sized print or of a G-code file's
 // toolpaths (until the slicer writes previews itself), and the thumbnails' cost.
 //   preview_bench synthetic OUT.html [LAYERS PATHS POINTS]   default 800 layers, 5000 paths, 1000000 points
-//   preview_bench gcode IN.gcode OUT.html                    the extrusions and travels of a Tranche G-code file
+//   preview_bench gcode IN.gcode OUT.html                    the extrusions and travels of a Tranche G-code
+//   file
 // Prints one line: layers paths points bytes encode_seconds thumbnail_seconds (16x16/QOI + 300x300/PNG
 // from the toolpaths) outline_thumbnail_seconds (the same from the outer perimeters taken as
 // island outlines, as the slicer could before planning any toolpath).
@@ -30,10 +31,12 @@ std::shared_ptr<const Provenance> provenance_for(PathKind kind) {
   if (!p) {
     auto r = std::make_shared<Provenance>();
     const double speed = kind == PathKind::OuterPerimeter ? 25 : kind == PathKind::Infill ? 80 : 40;
-    r->slots.push_back({schema::PropId::Speed,
-                        {{60, SourceKind::SchemaDefault, "", "", 0, ""},
-                         {speed, SourceKind::BuiltinDefault, "speed by kind", "stdlib/defaults.rules", 12, "speed = 40 mm/s"},
-                         {speed / 2, SourceKind::Rule, "small islands", "my.rules", 9, "speed = speed * 50%"}}});
+    r->slots.push_back(
+        {schema::PropId::Speed,
+         {{60, SourceKind::SchemaDefault, "", "", 0, ""},
+          {speed, SourceKind::BuiltinDefault, "speed by kind", "stdlib/defaults.rules", 12,
+           "speed = 40 mm/s"},
+          {speed / 2, SourceKind::Rule, "small islands", "my.rules", 9, "speed = speed * 50%"}}});
     r->slots.push_back({schema::PropId::Flow, {{1, SourceKind::SchemaDefault, "", "", 0, ""}}});
     r->slots.push_back({schema::PropId::Width, {{0.45, SourceKind::SchemaDefault, "", "", 0, ""}}});
     r->slots.push_back({schema::PropId::Fan, {{1, SourceKind::SchemaDefault, "", "", 0, ""}}});
@@ -48,7 +51,10 @@ PreviewPrint synthetic(int layers, int paths, long points) {
   const int per_layer = std::max(1, paths / layers);
   const int per_path = static_cast<int>(std::max<long>(2, points / std::max(1, paths)));
   uint32_t seed = 12345;
-  auto jitter = [&]() { seed = seed * 1664525u + 1013904223u; return static_cast<float>((seed >> 8) & 0xffff) / 65536.0f - 0.5f; };
+  auto jitter = [&]() {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>((seed >> 8) & 0xffff) / 65536.0f - 0.5f;
+  };
   for (int li = 0; li < layers; ++li) {
     PreviewLayer L;
     L.index = li;
@@ -87,11 +93,14 @@ PreviewPrint synthetic(int layers, int paths, long points) {
 }
 
 PathKind kind_of(const std::string& type) {
-  static const std::map<std::string, PathKind> k = {
-      {"External perimeter", PathKind::OuterPerimeter}, {"Perimeter", PathKind::InnerPerimeter},
-      {"Internal infill", PathKind::Infill},            {"Solid infill", PathKind::SolidInfill},
-      {"Top solid infill", PathKind::TopSolid},         {"Bridge infill", PathKind::Bridge},
-      {"Skirt/Brim", PathKind::Skirt},                  {"Ironing", PathKind::Ironing}};
+  static const std::map<std::string, PathKind> k = {{"External perimeter", PathKind::OuterPerimeter},
+                                                    {"Perimeter", PathKind::InnerPerimeter},
+                                                    {"Internal infill", PathKind::Infill},
+                                                    {"Solid infill", PathKind::SolidInfill},
+                                                    {"Top solid infill", PathKind::TopSolid},
+                                                    {"Bridge infill", PathKind::Bridge},
+                                                    {"Skirt/Brim", PathKind::Skirt},
+                                                    {"Ironing", PathKind::Ironing}};
   auto it = k.find(type);
   return it == k.end() ? PathKind::Custom : it->second;
 }
@@ -162,8 +171,10 @@ PreviewPrint from_gcode(const std::string& path) {
         p.points.push_back({static_cast<float>(nx), static_cast<float>(ny)});
         p.speed.push_back(static_cast<float>(f / 60));
       } else if (layer) {
-        if (extruding || layer->travels.empty()) layer->travels.push_back({{static_cast<float>(x), static_cast<float>(y)}, {}, {}, retracted});
-        else layer->travels.back().via.push_back(layer->travels.back().to);
+        if (extruding || layer->travels.empty())
+          layer->travels.push_back({{static_cast<float>(x), static_cast<float>(y)}, {}, {}, retracted});
+        else
+          layer->travels.back().via.push_back(layer->travels.back().to);
         layer->travels.back().to = {static_cast<float>(nx), static_cast<float>(ny)};
         extruding = false;
       }
@@ -173,7 +184,8 @@ PreviewPrint from_gcode(const std::string& path) {
   }
   for (PreviewLayer& l : print.layers)
     for (PreviewPath& p : l.paths)  // one speed for the path when its pieces agree, as the planner stores it
-      if (std::all_of(p.speed.begin(), p.speed.end(), [&](float s) { return s == p.speed[0]; })) p.speed.resize(1);
+      if (std::all_of(p.speed.begin(), p.speed.end(), [&](float s) { return s == p.speed[0]; }))
+        p.speed.resize(1);
   return print;
 }
 
@@ -189,12 +201,14 @@ int main(int argc, char** argv) {
   std::string out;
   if (cmd == "synthetic" && (argc == 3 || argc == 6)) {
     out = argv[2];
-    print = argc == 6 ? synthetic(std::stoi(argv[3]), std::stoi(argv[4]), std::stol(argv[5])) : synthetic(800, 5000, 1000000);
+    print = argc == 6 ? synthetic(std::stoi(argv[3]), std::stoi(argv[4]), std::stol(argv[5]))
+                      : synthetic(800, 5000, 1000000);
   } else if (cmd == "gcode" && argc == 4) {
     print = from_gcode(argv[2]);
     out = argv[3];
   } else {
-    std::fprintf(stderr, "usage: preview_bench synthetic OUT.html [LAYERS PATHS POINTS] | gcode IN.gcode OUT.html\n");
+    std::fprintf(stderr,
+                 "usage: preview_bench synthetic OUT.html [LAYERS PATHS POINTS] | gcode IN.gcode OUT.html\n");
     return 2;
   }
   size_t paths = 0, points = 0;
@@ -221,10 +235,13 @@ int main(int argc, char** argv) {
         outlines[i].push_back({std::move(poly), print.layers[i].z});
       }
   t0 = std::chrono::steady_clock::now();
-  auto from_outlines = thumbnails_gcode(print_box(print), [&](HeightCanvas& c) {
-    for (const auto& layer : outlines)
-      for (const auto& [poly, z] : layer) c.add_polygon(poly, 0, 0, z);
-  }, specs);
+  auto from_outlines = thumbnails_gcode(
+      print_box(print),
+      [&](HeightCanvas& c) {
+        for (const auto& layer : outlines)
+          for (const auto& [poly, z] : layer) c.add_polygon(poly, 0, 0, z);
+      },
+      specs);
   const double outline = seconds_since(t0);
   if (!from_outlines) return 1;
   std::printf("%zu %zu %zu %ju %.3f %.3f %.3f\n", print.layers.size(), paths, points,

@@ -49,7 +49,7 @@ struct SlotChain {
 
 // G-code an executor (`before path`, `after island`...) added around the path.
 struct ExecutorNote {
-  bool after = false;  // false: before the path's G-code
+  bool after = false;                         // false: before the path's G-code
   schema::Level level = schema::Level::Path;  // the hook's level (an island hook runs once per island)
   std::string rule, file;
   int line = 0;
@@ -76,11 +76,11 @@ struct PreviewPath {
   schema::PathKind kind = schema::PathKind::Custom;
   std::vector<PointMm> points;  // >= 2 for a printed path; closed loops repeat the first point
   // Per piece (points.size() - 1 entries) or a single entry for every piece.
-  std::vector<float> width;  // mm
-  std::vector<float> speed;  // mm/s, as written in F (after any min_layer_time slowdown)
-  std::vector<float> flow;   // extrusion multiplier, ratio (geometric corrections included)
-  float fan = 0;             // ratio 0..1
-  float nozzle_temp = 0;     // °C
+  std::vector<float> width;                    // mm
+  std::vector<float> speed;                    // mm/s, as written in F (after any min_layer_time slowdown)
+  std::vector<float> flow;                     // extrusion multiplier, ratio (geometric corrections included)
+  float fan = 0;                               // ratio 0..1
+  float nozzle_temp = 0;                       // °C
   int island = -1, cell = -1, perimeter = -1;  // context indices (-1: not applicable)
   std::shared_ptr<const Provenance> provenance;  // null: nothing recorded
   // Per piece where pieces were decided differently (empty: `provenance` for all pieces).
@@ -101,14 +101,14 @@ struct PreviewTravel {
 
 struct PreviewLayer {
   int index = 0;
-  float z = 0, height = 0;  // mm: top of the layer and its thickness
+  float z = 0, height = 0;         // mm: top of the layer and its thickness
   std::vector<PreviewPath> paths;  // print order
   std::vector<PreviewTravel> travels;
 };
 
 struct PreviewPrint {
-  float bed_x = 200, bed_y = 200;  // mm
-  std::string title;               // model name, shown in the page's title
+  float bed_x = 200, bed_y = 200;    // mm
+  std::string title;                 // model name, shown in the page's title
   std::vector<PreviewLayer> layers;  // bottom to top
 };
 

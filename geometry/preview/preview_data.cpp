@@ -16,11 +16,11 @@ namespace tranche::preview {
 namespace {
 
 // Quanta of the per-path and per-piece values in the blob (the viewer divides by the same).
-constexpr double kWidthQuantum = 0.001;   // mm
-constexpr double kSpeedQuantum = 0.01;    // mm/s
-constexpr double kFlowQuantum = 0.0001;   // ratio
-constexpr double kFanQuantum = 0.001;     // ratio
-constexpr double kTempQuantum = 0.1;      // °C
+constexpr double kWidthQuantum = 0.001;  // mm
+constexpr double kSpeedQuantum = 0.01;   // mm/s
+constexpr double kFlowQuantum = 0.0001;  // ratio
+constexpr double kFanQuantum = 0.001;    // ratio
+constexpr double kTempQuantum = 0.1;     // °C
 
 enum PathFlags : uint32_t { kWidthPerPiece = 1, kSpeedPerPiece = 2, kFlowPerPiece = 4, kPieceProvenance = 8 };
 
@@ -58,12 +58,15 @@ std::string compress(const std::string& raw);
 
 class PreviewEncoder::Impl {
  public:
-  Impl(float bed_x, float bed_y, std::string title) : bed_x_(bed_x), bed_y_(bed_y), title_(std::move(title)) {}
+  Impl(float bed_x, float bed_y, std::string title)
+      : bed_x_(bed_x), bed_y_(bed_y), title_(std::move(title)) {}
   Status layer(const PreviewLayer& layer, size_t li);
   Result<std::string> json();
   size_t layers = 0;
   std::optional<Error> failed;
-  const std::string& title() const { return title_; }  // the first error: the data is incomplete from there on
+  const std::string& title() const {
+    return title_;
+  }  // the first error: the data is incomplete from there on
 
  private:
   Status path(const PreviewPath& p, const std::string& where);
@@ -103,9 +106,11 @@ Status PreviewEncoder::Impl::path(const PreviewPath& p, const std::string& where
   auto per_piece = [&](const std::vector<float>& v, const char* name, double quantum, uint32_t flag,
                        uint32_t& flags) -> Status {
     if (v.size() != 1 && v.size() != pieces)
-      return Error{where, fmt::format("{} {} value(s) for {} piece(s); give 1 or one per piece", v.size(), name, pieces)};
+      return Error{where, fmt::format("{} {} value(s) for {} piece(s); give 1 or one per piece", v.size(),
+                                      name, pieces)};
     for (float x : v)
-      if (!std::isfinite(x) || std::fabs(x / quantum) > 1e15) return Error{where, fmt::format("{} {} is not finite", name, x)};
+      if (!std::isfinite(x) || std::fabs(x / quantum) > 1e15)
+        return Error{where, fmt::format("{} {} is not finite", name, x)};
     if (v.size() > 1) flags |= flag;
     return ok_status();
   };
@@ -115,10 +120,12 @@ Status PreviewEncoder::Impl::path(const PreviewPath& p, const std::string& where
   if (Status s = per_piece(p.flow, "flow", kFlowQuantum, kFlowPerPiece, flags); !s) return s;
   if (!p.piece_provenance.empty()) {
     if (p.piece_provenance.size() != pieces)
-      return Error{where, fmt::format("{} piece provenance(s) for {} piece(s)", p.piece_provenance.size(), pieces)};
+      return Error{where,
+                   fmt::format("{} piece provenance(s) for {} piece(s)", p.piece_provenance.size(), pieces)};
     flags |= kPieceProvenance;
   }
-  if (!std::isfinite(p.fan) || !std::isfinite(p.nozzle_temp)) return Error{where, "fan or nozzle temperature is not finite"};
+  if (!std::isfinite(p.fan) || !std::isfinite(p.nozzle_temp))
+    return Error{where, "fan or nozzle temperature is not finite"};
   put_varint(blob_, static_cast<uint64_t>(p.kind));
   put_varint(blob_, p.points.size());
   put_varint(blob_, flags);
@@ -156,8 +163,8 @@ Status PreviewEncoder::Impl::layer(const PreviewLayer& layer, size_t li) {
   if (!std::isfinite(layer.z) || !std::isfinite(layer.height))
     return Error{fmt::format("preview: layer {}", li), "z or height is not finite"};
   if (!layers_json_.empty()) layers_json_.push_back(',');
-  layers_json_ += fmt::format("[{},{},{},{},{}]", layer.index, num(layer.z), num(layer.height), layer.paths.size(),
-                              layer.travels.size());
+  layers_json_ += fmt::format("[{},{},{},{},{}]", layer.index, num(layer.z), num(layer.height),
+                              layer.paths.size(), layer.travels.size());
   paths_ += layer.paths.size();
   travels_ += layer.travels.size();
   return ok_status();
@@ -189,7 +196,8 @@ std::string PreviewEncoder::Impl::provenance_json(const Provenance& p) {
   }
   j += "],\"r\":";
   if (const ReplacerNote* r = p.replacer.get())
-    j += fmt::format("[{},{},{},{}]", string_id(r->rule), string_id(r->file), r->line, r->emitted_default ? 1 : 0);
+    j += fmt::format("[{},{},{},{}]", string_id(r->rule), string_id(r->file), r->line,
+                     r->emitted_default ? 1 : 0);
   else
     j += "null";
   return j + "}";
@@ -221,21 +229,27 @@ std::string compress(const std::string& raw) {
 }  // namespace
 
 Result<std::string> PreviewEncoder::Impl::json() {
-  std::string j = fmt::format("{{\"format\":\"tranche-preview\",\"version\":{},\"title\":", kPreviewFormatVersion);
+  std::string j =
+      fmt::format("{{\"format\":\"tranche-preview\",\"version\":{},\"title\":", kPreviewFormatVersion);
   append_json_string(j, title_);
-  j += fmt::format(",\"bed\":[{},{}],\"quantum\":{{\"xy\":{},\"width\":{},\"speed\":{},\"flow\":{},\"fan\":{},\"temp\":{}}}",
-                   num(bed_x_), num(bed_y_), kCoordQuantumMm, kWidthQuantum, kSpeedQuantum, kFlowQuantum,
-                   kFanQuantum, kTempQuantum);
+  j += fmt::format(
+      ",\"bed\":[{},{}],\"quantum\":{{\"xy\":{},\"width\":{},\"speed\":{},\"flow\":{},\"fan\":{},\"temp\":{}}"
+      "}",
+      num(bed_x_), num(bed_y_), kCoordQuantumMm, kWidthQuantum, kSpeedQuantum, kFlowQuantum, kFanQuantum,
+      kTempQuantum);
   j += ",\"kinds\":[";
   for (int k = 0; k < kPathKindCount; ++k) {
     const auto kind = static_cast<schema::PathKind>(k);
     j += fmt::format("{}[\"{}\",\"{}\",\"{}\"]", k ? "," : "",
-                     schema::enum_value_name(schema::EnumType::PathKind, k), kind_label(kind), to_hex(kind_colour(kind)));
+                     schema::enum_value_name(schema::EnumType::PathKind, k), kind_label(kind),
+                     to_hex(kind_colour(kind)));
   }
   j += "],\"ranges\":[";
-  for (int i = 0; i < kRangeColourCount; ++i) j += fmt::format("{}\"{}\"", i ? "," : "", to_hex(range_colours()[i]));
+  for (int i = 0; i < kRangeColourCount; ++i)
+    j += fmt::format("{}\"{}\"", i ? "," : "", to_hex(range_colours()[i]));
   j += "],\"categories\":[";
-  for (int i = 0; i < kCategoryColourCount; ++i) j += fmt::format("{}\"{}\"", i ? "," : "", to_hex(category_colour(i)));
+  for (int i = 0; i < kCategoryColourCount; ++i)
+    j += fmt::format("{}\"{}\"", i ? "," : "", to_hex(category_colour(i)));
   j += "],\"props\":[";
   for (int i = 0; i < schema::kPropCount; ++i) {
     const auto& info = schema::property(static_cast<schema::PropId>(i));
@@ -259,8 +273,9 @@ Result<std::string> PreviewEncoder::Impl::json() {
     if (i) j.push_back(',');
     j += provs_[i];
   }
-  j += fmt::format("],\"layers\":[{}],\"counts\":{{\"paths\":{},\"points\":{},\"travels\":{},\"travelPoints\":{}}}",
-                   layers_json_, paths_, points_, travels_, travel_points_);
+  j += fmt::format(
+      "],\"layers\":[{}],\"counts\":{{\"paths\":{},\"points\":{},\"travels\":{},\"travelPoints\":{}}}",
+      layers_json_, paths_, points_, travels_, travel_points_);
   const std::string packed = compress(blob_);
   if (packed.empty()) return Error{"preview", "zlib could not compress the preview's data (out of memory?)"};
   j += fmt::format(",\"blobBytes\":{},\"blob\":\"", blob_.size());

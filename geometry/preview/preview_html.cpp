@@ -21,11 +21,20 @@ std::string html_escaped(std::string_view s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out.push_back(c);
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out.push_back(c);
     }
   }
   return out;
@@ -34,10 +43,12 @@ std::string html_escaped(std::string_view s) {
 // The viewer's HTML with its /*@NAME@*/ markers replaced; an unknown or missing marker is a
 // build defect the tests catch (the page would lack its script).
 std::string fill_template(std::string_view html, const std::string& title, const std::string& data) {
-  const std::pair<std::string_view, std::string_view> parts[] = {
-      {"/*@TITLE@*/", title},          {"/*@CSS@*/", assets::viewer_css()}, {"/*@DATA@*/", data},
-      {"/*@DECODE_JS@*/", assets::decode_js()}, {"/*@DRAW_JS@*/", assets::draw_js()},
-      {"/*@UI_JS@*/", assets::ui_js()}};
+  const std::pair<std::string_view, std::string_view> parts[] = {{"/*@TITLE@*/", title},
+                                                                 {"/*@CSS@*/", assets::viewer_css()},
+                                                                 {"/*@DATA@*/", data},
+                                                                 {"/*@DECODE_JS@*/", assets::decode_js()},
+                                                                 {"/*@DRAW_JS@*/", assets::draw_js()},
+                                                                 {"/*@UI_JS@*/", assets::ui_js()}};
   std::string out;
   out.reserve(html.size() + data.size() + 200000);
   size_t at = 0;
@@ -57,7 +68,8 @@ std::string fill_template(std::string_view html, const std::string& title, const
 }
 
 std::string page(const std::string& title, const std::string& data) {
-  return fill_template(assets::viewer_html(), html_escaped(title.empty() ? "Tranche preview" : title + " — Tranche preview"), data);
+  return fill_template(assets::viewer_html(),
+                       html_escaped(title.empty() ? "Tranche preview" : title + " — Tranche preview"), data);
 }
 
 Status write_page(const std::string& path, const Result<std::string>& html) {

@@ -7,7 +7,14 @@ namespace tranche::preview {
 
 namespace {
 
-enum : uint8_t { kOpIndex = 0x00, kOpDiff = 0x40, kOpLuma = 0x80, kOpRun = 0xc0, kOpRgb = 0xfe, kOpRgba = 0xff };
+enum : uint8_t {
+  kOpIndex = 0x00,
+  kOpDiff = 0x40,
+  kOpLuma = 0x80,
+  kOpRun = 0xc0,
+  kOpRgb = 0xfe,
+  kOpRgba = 0xff
+};
 
 struct Px {
   uint8_t r = 0, g = 0, b = 0, a = 255;

@@ -45,7 +45,8 @@ bool solve(double a, double c, double lo, double hi, double& x0, double& x1) {
 }  // namespace
 
 void HeightCanvas::add_segment(PointMm a, PointMm b, float width_mm, float z_mm) {
-  const double ax = ox_ + a.x * scale_, ay = oy_ - a.y * scale_, bx = ox_ + b.x * scale_, by = oy_ - b.y * scale_;
+  const double ax = ox_ + a.x * scale_, ay = oy_ - a.y * scale_, bx = ox_ + b.x * scale_,
+               by = oy_ - b.y * scale_;
   const double r = std::max(0.5 * width_mm * scale_, 0.6);  // thin beads stay visible
   const double len = std::hypot(bx - ax, by - ay);
   const double ux = len > 0 ? (bx - ax) / len : 1, uy = len > 0 ? (by - ay) / len : 0, nx = -uy, ny = ux;
@@ -57,8 +58,8 @@ void HeightCanvas::add_segment(PointMm a, PointMm b, float width_mm, float z_mm)
     const double py = y + 0.5;
     Span span;
     double p0, p1, q0, q1;
-    if (solve(nx, (py - ay) * ny - ax * nx, -r, r, p0, p1) && solve(ux, (py - ay) * uy - ax * ux, 0, len, q0, q1) &&
-        std::max(p0, q0) <= std::min(p1, q1))
+    if (solve(nx, (py - ay) * ny - ax * nx, -r, r, p0, p1) &&
+        solve(ux, (py - ay) * uy - ax * ux, 0, len, q0, q1) && std::max(p0, q0) <= std::min(p1, q1))
       span.add(std::max(p0, q0), std::min(p1, q1));
     for (const auto& [cx, cy] : {std::pair{ax, ay}, std::pair{bx, by}}) {
       const double h = r * r - (py - cy) * (py - cy);
@@ -74,13 +75,14 @@ void HeightCanvas::add_segment(PointMm a, PointMm b, float width_mm, float z_mm)
 
 void HeightCanvas::add_layer(const PreviewLayer& layer) {
   for (const PreviewPath& p : layer.paths)
-    for (size_t i = 0; i < p.piece_count(); ++i) add_segment(p.points[i], p.points[i + 1], p.width_at(i), layer.z);
+    for (size_t i = 0; i < p.piece_count(); ++i)
+      add_segment(p.points[i], p.points[i + 1], p.width_at(i), layer.z);
 }
 
 void HeightCanvas::fill_spans(const std::vector<std::vector<PointMm>>& rings, float z_mm) {
   // A scanline fill with an edge table: each edge is visited only on the rows it spans.
   struct Edge {
-    int row0, row1;  // first and last row whose centre it crosses
+    int row0, row1;   // first and last row whose centre it crosses
     double x0, dxdr;  // x (px) at row0's centre, and per row
   };
   std::vector<Edge> edges;
@@ -91,7 +93,8 @@ void HeightCanvas::fill_spans(const std::vector<std::vector<PointMm>>& rings, fl
       if (ay == by) continue;
       if (ay > by) std::swap(ax, bx), std::swap(ay, by);
       // Rows whose centre y + 0.5 lies in [ay, by): half-open, so a vertex is counted once.
-      const int r0 = std::max(0, static_cast<int>(std::ceil(ay - 0.5))), r1 = std::min(sh_ - 1, static_cast<int>(std::ceil(by - 0.5)) - 1);
+      const int r0 = std::max(0, static_cast<int>(std::ceil(ay - 0.5))),
+                r1 = std::min(sh_ - 1, static_cast<int>(std::ceil(by - 0.5)) - 1);
       if (r0 > r1) continue;
       const double dxdr = (bx - ax) / (by - ay);
       edges.push_back({r0, r1, ax + (r0 + 0.5 - ay) * dxdr, dxdr});
@@ -121,7 +124,8 @@ void HeightCanvas::add_polygon(const geo::Polygon& poly, double dx_mm, double dy
   auto add = [&](const geo::Ring& r) {
     auto& out = rings.emplace_back();
     for (const geo::Point& p : r)
-      out.push_back({static_cast<float>(geo::to_mm(p.X) + dx_mm), static_cast<float>(geo::to_mm(p.Y) + dy_mm)});
+      out.push_back(
+          {static_cast<float>(geo::to_mm(p.X) + dx_mm), static_cast<float>(geo::to_mm(p.Y) + dy_mm)});
   };
   add(poly.outer);
   for (const geo::Ring& h : poly.holes) add(h);
@@ -169,7 +173,9 @@ Image HeightCanvas::shade(const ShadeStyle& style) const {
         for (int sx = ox * ss_; sx < (ox + 1) * ss_; ++sx) {
           const size_t i = static_cast<size_t>(sy) * sw_ + sx;
           if (z_[i] == kEmpty) continue;
-          auto Z = [&](int x, int y) { return smooth[static_cast<size_t>(std::clamp(y, 0, sh_ - 1)) * sw_ + std::clamp(x, 0, sw_ - 1)]; };
+          auto Z = [&](int x, int y) {
+            return smooth[static_cast<size_t>(std::clamp(y, 0, sh_ - 1)) * sw_ + std::clamp(x, 0, sw_ - 1)];
+          };
           const double gx = (Z(sx + 1, sy) - Z(sx - 1, sy)) * scale_ / 2;  // dz/dx, bed
           const double gy = (Z(sx, sy - 1) - Z(sx, sy + 1)) * scale_ / 2;  // dz/dy, bed (rows run down)
           const double len = std::sqrt(gx * gx + gy * gy + 1);

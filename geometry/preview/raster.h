@@ -44,10 +44,10 @@ class HeightCanvas {
 
  private:
   void fill_spans(const std::vector<std::vector<PointMm>>& rings, float z_mm);
-  int w_, h_, ss_;             // output size and supersampling factor
-  int sw_, sh_;                // the height map's size (output × ss_)
-  double scale_, ox_, oy_;     // px per mm, and the pixel of bed (0, 0)
-  std::vector<float> z_;       // height map, -1 where nothing was laid
+  int w_, h_, ss_;          // output size and supersampling factor
+  int sw_, sh_;             // the height map's size (output × ss_)
+  double scale_, ox_, oy_;  // px per mm, and the pixel of bed (0, 0)
+  std::vector<float> z_;    // height map, -1 where nothing was laid
 };
 
 // The print's extent (every path point), bed mm; empty when there are no paths.

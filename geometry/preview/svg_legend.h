@@ -23,13 +23,13 @@ struct LegendEntry {
 };
 
 struct LegendLayout {
-  double x = 0, y = 0;     // top left corner, in the SVG's user units
-  double font = 12;        // text size, user units
+  double x = 0, y = 0;  // top left corner, in the SVG's user units
+  double font = 12;     // text size, user units
   std::string title = "Legend";
 };
 
 struct SvgLegend {
-  std::string svg;             // <g class="legend" ...>...</g>, ending in '\n'
+  std::string svg;               // <g class="legend" ...>...</g>, ending in '\n'
   double width = 0, height = 0;  // its extent, user units
 };
 

@@ -33,23 +33,30 @@ Result<std::vector<ThumbnailSpec>> parse_thumbnail_specs(std::string_view text) 
   size_t at = 0;
   while (at < text.size()) {
     const size_t end = text.find_first_of(", \t", at);
-    const std::string_view entry = text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
+    const std::string_view entry =
+        text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
     at = end == std::string_view::npos ? text.size() : end + 1;
     if (entry.empty()) continue;
     const auto bad = [&](std::string why) {
-      return Error{"thumbnails", fmt::format("'{}': {}; write WxH or WxH/PNG or WxH/QOI, e.g. \"16x16/QOI, 300x300/PNG\"", entry, why)};
+      return Error{"thumbnails",
+                   fmt::format("'{}': {}; write WxH or WxH/PNG or WxH/QOI, e.g. \"16x16/QOI, 300x300/PNG\"",
+                               entry, why)};
     };
     ThumbnailSpec s;
     std::string_view size = entry;
     if (const size_t slash = entry.find('/'); slash != std::string_view::npos) {
       size = entry.substr(0, slash);
       const std::string f = upper(entry.substr(slash + 1));
-      if (f == "PNG") s.format = ThumbnailFormat::Png;
-      else if (f == "QOI") s.format = ThumbnailFormat::Qoi;
-      else return bad(fmt::format("format '{}' is not PNG or QOI", entry.substr(slash + 1)));
+      if (f == "PNG")
+        s.format = ThumbnailFormat::Png;
+      else if (f == "QOI")
+        s.format = ThumbnailFormat::Qoi;
+      else
+        return bad(fmt::format("format '{}' is not PNG or QOI", entry.substr(slash + 1)));
     }
     const size_t x = size.find_first_of("xX");
-    if (x == std::string_view::npos || !parse_int(size.substr(0, x), s.width) || !parse_int(size.substr(x + 1), s.height))
+    if (x == std::string_view::npos || !parse_int(size.substr(0, x), s.width) ||
+        !parse_int(size.substr(x + 1), s.height))
       return bad("not a size");
     if (s.width < 1 || s.height < 1 || s.width > kMaxThumbnailSide || s.height > kMaxThumbnailSide)
       return bad(fmt::format("each side must be 1 to {} px", kMaxThumbnailSide));
@@ -76,8 +83,8 @@ Result<std::string> thumbnail_block(const Image& image, const ThumbnailSpec& spe
   return thumbnail_block(*bytes, spec);
 }
 
-Result<std::string> thumbnails_gcode(BoxMm box, const DrawThumbnail& draw, std::span<const ThumbnailSpec> specs,
-                                     const ShadeStyle& style) {
+Result<std::string> thumbnails_gcode(BoxMm box, const DrawThumbnail& draw,
+                                     std::span<const ThumbnailSpec> specs, const ShadeStyle& style) {
   std::string out;
   for (const ThumbnailSpec& s : specs) {
     HeightCanvas canvas(s.width, s.height, box);

@@ -43,8 +43,8 @@ Result<std::string> thumbnail_block(const Image& image, const ThumbnailSpec& spe
 // `draw` (which adds the toolpaths, or the sliced islands when the toolpaths are not planned yet),
 // then shaded and encoded.
 using DrawThumbnail = std::function<void(HeightCanvas&)>;
-Result<std::string> thumbnails_gcode(BoxMm box, const DrawThumbnail& draw, std::span<const ThumbnailSpec> specs,
-                                     const ShadeStyle& style = {});
+Result<std::string> thumbnails_gcode(BoxMm box, const DrawThumbnail& draw,
+                                     std::span<const ThumbnailSpec> specs, const ShadeStyle& style = {});
 // The same from the print's toolpaths (render_thumbnail).
 Result<std::string> thumbnails_gcode(const PreviewPrint& print, std::span<const ThumbnailSpec> specs,
                                      const ShadeStyle& style = {});

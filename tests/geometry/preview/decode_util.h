@@ -41,7 +41,8 @@ inline std::string inflate(std::string_view z, size_t size) {
   std::string out(size, '\0');
   uLongf n = static_cast<uLongf>(size);
   if (::uncompress(reinterpret_cast<Bytef*>(out.data()), &n, reinterpret_cast<const Bytef*>(z.data()),
-                   static_cast<uLong>(z.size())) != Z_OK || n != size)
+                   static_cast<uLong>(z.size())) != Z_OK ||
+      n != size)
     throw std::runtime_error("zlib stream does not inflate to the declared size");
   return out;
 }

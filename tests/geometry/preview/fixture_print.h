@@ -37,7 +37,7 @@ inline std::vector<PointMm> circle(float r, int n = 96) {
 inline std::vector<PointMm> infill(float r, bool odd) {
   std::vector<PointMm> pts;
   const float dx = std::numbers::sqrt2_v<float> / 2, dy = odd ? -dx : dx;  // line direction
-  const float nx = -dy, ny = dx;                                            // across the lines
+  const float nx = -dy, ny = dx;                                           // across the lines
   const int n = static_cast<int>((r - 0.5f) / 2);  // lines at offsets 2k mm: one through the centre
   for (int k = -n; k <= n; ++k) {
     const float off = 2.0f * static_cast<float>(k);
@@ -56,41 +56,70 @@ struct Provenances {
 };
 
 inline Provenances provenances() {
-  const SlotChain flow{schema::PropId::Flow, {step(1, SourceKind::SchemaDefault), step(0.95, SourceKind::Set, {}, {}, 0, "flow=0.95")}};
+  const SlotChain flow{
+      schema::PropId::Flow,
+      {step(1, SourceKind::SchemaDefault), step(0.95, SourceKind::Set, {}, {}, 0, "flow=0.95")}};
   const SlotChain width{schema::PropId::Width, {step(0.45, SourceKind::SchemaDefault)}};
   const SlotChain fan{schema::PropId::Fan, {step(1, SourceKind::SchemaDefault)}};
-  const ChainStep outer_default = step(25, SourceKind::BuiltinDefault, "outer perimeter speed", "stdlib/defaults.rules", 14, "speed = 25 mm/s");
+  const ChainStep outer_default = step(25, SourceKind::BuiltinDefault, "outer perimeter speed",
+                                       "stdlib/defaults.rules", 14, "speed = 25 mm/s");
   Provenances p;
   p.outer = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), outer_default}}, flow, width, fan}, {}, nullptr});
-  p.outer_slow = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), outer_default,
-                                step(12.5, SourceKind::Rule, "slow walls", "fixture.rules", 4, "speed = speed * 50%")}},
-       flow, width, fan},
-      {}, nullptr});
-  p.overhang = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), outer_default,
-                                step(10, SourceKind::Rule, "overhangs", "fixture.rules", 20, "speed = 10 mm/s")}},
-       flow, width, fan},
-      {}, nullptr});
+      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), outer_default}}, flow, width, fan},
+      {},
+      nullptr});
+  p.outer_slow = std::make_shared<Provenance>(
+      Provenance{{{schema::PropId::Speed,
+                   {step(60, SourceKind::SchemaDefault), outer_default,
+                    step(12.5, SourceKind::Rule, "slow walls", "fixture.rules", 4, "speed = speed * 50%")}},
+                  flow,
+                  width,
+                  fan},
+                 {},
+                 nullptr});
+  p.overhang = std::make_shared<Provenance>(
+      Provenance{{{schema::PropId::Speed,
+                   {step(60, SourceKind::SchemaDefault), outer_default,
+                    step(10, SourceKind::Rule, "overhangs", "fixture.rules", 20, "speed = 10 mm/s")}},
+                  flow,
+                  width,
+                  fan},
+                 {},
+                 nullptr});
   p.inner = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), step(40, SourceKind::BuiltinDefault, "inner perimeter speed", "stdlib/defaults.rules", 15, "speed = 40 mm/s")}},
-       flow, width, fan},
+      {{schema::PropId::Speed,
+        {step(60, SourceKind::SchemaDefault), step(40, SourceKind::BuiltinDefault, "inner perimeter speed",
+                                                   "stdlib/defaults.rules", 15, "speed = 40 mm/s")}},
+       flow,
+       width,
+       fan},
       {ExecutorNote{false, schema::Level::Path, "pressure advance", "fixture.rules", 10, "M900 K0.045"}},
       nullptr});
   p.infill = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), step(80, SourceKind::Rule, "fast infill", "fixture.rules", 7, "speed = 80 mm/s")}},
-       flow, width, fan,
-       {schema::PropId::FillAngle, {step(45, SourceKind::SchemaDefault), step(135, SourceKind::BuiltinDefault, "alternate fill angle", "stdlib/defaults.rules", 30, "fill_angle = 135°")}}},
-      {}, nullptr});
+      {{schema::PropId::Speed,
+        {step(60, SourceKind::SchemaDefault),
+         step(80, SourceKind::Rule, "fast infill", "fixture.rules", 7, "speed = 80 mm/s")}},
+       flow,
+       width,
+       fan,
+       {schema::PropId::FillAngle,
+        {step(45, SourceKind::SchemaDefault), step(135, SourceKind::BuiltinDefault, "alternate fill angle",
+                                                   "stdlib/defaults.rules", 30, "fill_angle = 135°")}}},
+      {},
+      nullptr});
   p.top = std::make_shared<Provenance>(Provenance{
-      {{schema::PropId::Speed, {step(60, SourceKind::SchemaDefault), step(30, SourceKind::BuiltinDefault, "top speed", "stdlib/defaults.rules", 18, "speed = 30 mm/s")}},
-       flow, width, fan},
-      {}, std::make_shared<ReplacerNote>(ReplacerNote{"ironing pass", "fixture.rules", 14, true})});
+      {{schema::PropId::Speed,
+        {step(60, SourceKind::SchemaDefault),
+         step(30, SourceKind::BuiltinDefault, "top speed", "stdlib/defaults.rules", 18, "speed = 30 mm/s")}},
+       flow,
+       width,
+       fan},
+      {},
+      std::make_shared<ReplacerNote>(ReplacerNote{"ironing pass", "fixture.rules", 14, true})});
   return p;
 }
 
-inline constexpr int kSlowFrom = 10;     // layers from here print the outer wall at 12.5 mm/s
+inline constexpr int kSlowFrom = 10;      // layers from here print the outer wall at 12.5 mm/s
 inline constexpr int kOverhangLayer = 6;  // this layer's outer wall is at 10 mm/s where y > kCy
 
 inline PreviewPrint vase_print(int layers = 24) {
@@ -104,7 +133,8 @@ inline PreviewPrint vase_print(int layers = 24) {
     L.z = 0.2f * static_cast<float>(li + 1);
     const float r = outer_radius(li);
     const bool top = li >= layers - 3;
-    auto path = [&](schema::PathKind kind, std::vector<PointMm> pts, float speed, std::shared_ptr<const Provenance> prov) {
+    auto path = [&](schema::PathKind kind, std::vector<PointMm> pts, float speed,
+                    std::shared_ptr<const Provenance> prov) {
       PreviewPath p;
       p.kind = kind;
       p.points = std::move(pts);
@@ -117,8 +147,8 @@ inline PreviewPrint vase_print(int layers = 24) {
       p.provenance = std::move(prov);
       return p;
     };
-    PreviewPath fill = path(top ? schema::PathKind::TopSolid : schema::PathKind::Infill, infill(r - 1.0f, li % 2 == 1),
-                            top ? 30.0f : 80.0f, top ? P.top : P.infill);
+    PreviewPath fill = path(top ? schema::PathKind::TopSolid : schema::PathKind::Infill,
+                            infill(r - 1.0f, li % 2 == 1), top ? 30.0f : 80.0f, top ? P.top : P.infill);
     fill.cell = 0;
     L.paths.push_back(std::move(fill));
     PreviewPath inner = path(schema::PathKind::InnerPerimeter, circle(r - 0.45f), 40, P.inner);

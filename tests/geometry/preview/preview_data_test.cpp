@@ -31,7 +31,9 @@ std::string blob_of(const std::string& json) {
 
 }  // namespace
 
-TEST_CASE("preview data: the blob holds each path's header, values and delta-coded points as docs/preview.md says") {
+TEST_CASE(
+    "preview data: the blob holds each path's header, values and delta-coded points as docs/preview.md "
+    "says") {
   PreviewPrint print;
   PreviewLayer layer;
   layer.z = 0.2f;
@@ -51,36 +53,37 @@ TEST_CASE("preview data: the blob holds each path's header, values and delta-cod
   CHECK(json->find('<') == std::string::npos);
   CHECK(test::json_value(*json, "format") == "tranche-preview");
   CHECK(test::json_value(*json, "version") == "1");
-  CHECK(json->find("\"counts\":{\"paths\":1,\"points\":3,\"travels\":1,\"travelPoints\":3}") != std::string::npos);
+  CHECK(json->find("\"counts\":{\"paths\":1,\"points\":3,\"travels\":1,\"travelPoints\":3}") !=
+        std::string::npos);
 
   const std::string blob = blob_of(*json);
   VarintReader r{blob};
   CHECK(r.u() == static_cast<uint64_t>(schema::PathKind::Bridge));
-  CHECK(r.u() == 3);        // points
-  CHECK(r.u() == 2);        // flags: speed per piece
-  CHECK(r.u() == 0);        // no provenance
-  CHECK(r.s() == 2);        // island
-  CHECK(r.s() == -1);       // cell
-  CHECK(r.s() == -1);       // perimeter
-  CHECK(r.s() == 500);      // fan, 1/1000
-  CHECK(r.s() == 2150);     // nozzle, 0.1 °C
-  CHECK(r.s() == 450);      // width, µm
-  CHECK(r.s() == 2500);     // speed, 0.01 mm/s, piece 1
-  CHECK(r.s() == 1250);     // piece 2
-  CHECK(r.s() == 10000);    // flow, 1/10000
-  CHECK(r.s() == 1000);     // x 10 mm in 10 µm
+  CHECK(r.u() == 3);      // points
+  CHECK(r.u() == 2);      // flags: speed per piece
+  CHECK(r.u() == 0);      // no provenance
+  CHECK(r.s() == 2);      // island
+  CHECK(r.s() == -1);     // cell
+  CHECK(r.s() == -1);     // perimeter
+  CHECK(r.s() == 500);    // fan, 1/1000
+  CHECK(r.s() == 2150);   // nozzle, 0.1 °C
+  CHECK(r.s() == 450);    // width, µm
+  CHECK(r.s() == 2500);   // speed, 0.01 mm/s, piece 1
+  CHECK(r.s() == 1250);   // piece 2
+  CHECK(r.s() == 10000);  // flow, 1/10000
+  CHECK(r.s() == 1000);   // x 10 mm in 10 µm
   CHECK(r.s() == 2000);
-  CHECK(r.s() == 50);       // +0.5 mm
+  CHECK(r.s() == 50);  // +0.5 mm
   CHECK(r.s() == 0);
   CHECK(r.s() == 0);
-  CHECK(r.s() == 125);      // +1.25 mm
-  CHECK(r.u() == 1);        // travel: retracted
-  CHECK(r.u() == 1);        // one via point
-  CHECK(r.s() == 0);        // from = where the path ended
+  CHECK(r.s() == 125);  // +1.25 mm
+  CHECK(r.u() == 1);    // travel: retracted
+  CHECK(r.u() == 1);    // one via point
+  CHECK(r.s() == 0);    // from = where the path ended
   CHECK(r.s() == 0);
-  CHECK(r.s() == -550);     // via (5, 5)
+  CHECK(r.s() == -550);  // via (5, 5)
   CHECK(r.s() == -1625);
-  CHECK(r.s() == -500);     // to (0, 0)
+  CHECK(r.s() == -500);  // to (0, 0)
   CHECK(r.s() == -500);
   CHECK(r.at == r.buf.size());
 }
@@ -93,7 +96,8 @@ TEST_CASE("preview data: equal provenance records are stored once, whoever owns 
   const size_t from = json->find("\"provenance\":["), to = json->find("],\"layers\"");
   const std::string table = json->substr(from, to - from);
   size_t records = 0;
-  for (size_t at = table.find("{\"s\":"); at != std::string::npos; at = table.find("{\"s\":", at + 1)) ++records;
+  for (size_t at = table.find("{\"s\":"); at != std::string::npos; at = table.find("{\"s\":", at + 1))
+    ++records;
   CHECK(records == 6);
   // A copy of a record under another pointer is still the same record.
   auto copy = std::make_shared<Provenance>(*print.layers[0].paths[0].provenance);
@@ -101,7 +105,8 @@ TEST_CASE("preview data: equal provenance records are stored once, whoever owns 
   auto again = encode_preview_json(print);
   REQUIRE(again.ok());
   CHECK(again->find("\"provenance\":[") != std::string::npos);
-  CHECK(again->substr(again->find("\"provenance\":["), again->find("],\"layers\"") - again->find("\"provenance\":[")) == table);
+  CHECK(again->substr(again->find("\"provenance\":["),
+                      again->find("],\"layers\"") - again->find("\"provenance\":[")) == table);
   // Strings (rule names, files, G-code) are interned and escaped for a <script> element.
   CHECK(json->find("\"slow walls\"") != std::string::npos);
   CHECK(json->find("\"speed = speed * 50%\"") != std::string::npos);
@@ -119,7 +124,8 @@ TEST_CASE("preview data: bad paths are refused with the layer and path named") {
   print.layers[0].paths[0].width = {0.4f, 0.4f, 0.4f};
   r = encode_preview_json(print);
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().to_string() == "preview: layer 0, path 0: 3 width value(s) for 2 piece(s); give 1 or one per piece");
+  CHECK(r.error().to_string() ==
+        "preview: layer 0, path 0: 3 width value(s) for 2 piece(s); give 1 or one per piece");
 
   print.layers[0].paths[0] = line_path({{1, 1}, {std::numeric_limits<float>::quiet_NaN(), 2}});
   r = encode_preview_json(print);
@@ -143,7 +149,8 @@ TEST_CASE("preview data: strings cannot close the page's <script> element") {
   print.layers.emplace_back();
   PreviewPath p = line_path({{0, 0}, {1, 0}});
   auto prov = std::make_shared<Provenance>();
-  prov->executors.push_back({false, schema::Level::Path, "x</script>", "a&b.rules", 3, "M117 <hi>\n\"quoted\""});
+  prov->executors.push_back(
+      {false, schema::Level::Path, "x</script>", "a&b.rules", 3, "M117 <hi>\n\"quoted\""});
   p.provenance = prov;
   print.layers[0].paths.push_back(p);
   auto json = encode_preview_json(print);

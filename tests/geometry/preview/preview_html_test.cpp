@@ -22,7 +22,8 @@ TEST_CASE("preview html: one self-contained page, every viewer part embedded, no
   CHECK(h.find("window.tranchePreview") != std::string::npos);  // ui.js
   CHECK(h.find("#layer-bar") != std::string::npos);             // viewer.css
   // No network: no external script, style, font or image.
-  for (const char* s : {"src=\"http", "href=\"http", "url(http", "@import", "<link"}) CHECK(h.find(s) == std::string::npos);
+  for (const char* s : {"src=\"http", "href=\"http", "url(http", "@import", "<link"})
+    CHECK(h.find(s) == std::string::npos);
   // Four <script> elements (data, decode, draw, ui), each closed once: no embedded text closes one early.
   size_t opens = 0, closes = 0;
   for (size_t at = h.find("<script"); at != std::string::npos; at = h.find("<script", at + 1)) ++opens;

@@ -32,8 +32,10 @@ Image decode_qoi(const std::string& s) {
   REQUIRE(s.size() >= 22);
   REQUIRE(s.substr(0, 4) == "qoif");
   auto u32 = [&](size_t at) {
-    return static_cast<uint32_t>(static_cast<uint8_t>(s[at])) << 24 | static_cast<uint32_t>(static_cast<uint8_t>(s[at + 1])) << 16 |
-           static_cast<uint32_t>(static_cast<uint8_t>(s[at + 2])) << 8 | static_cast<uint32_t>(static_cast<uint8_t>(s[at + 3]));
+    return static_cast<uint32_t>(static_cast<uint8_t>(s[at])) << 24 |
+           static_cast<uint32_t>(static_cast<uint8_t>(s[at + 1])) << 16 |
+           static_cast<uint32_t>(static_cast<uint8_t>(s[at + 2])) << 8 |
+           static_cast<uint32_t>(static_cast<uint8_t>(s[at + 3]));
   };
   Image img(static_cast<int>(u32(4)), static_cast<int>(u32(8)));
   std::array<std::array<uint8_t, 4>, 64> index{};
@@ -85,11 +87,11 @@ TEST_CASE("thumbnails: the vase renders as a shaded, anti-aliased disc on a tran
   const Image img = render_thumbnail(fixture::vase_print(30), 64, 48);
   REQUIRE(img.width == 64);
   REQUIRE(img.height == 48);
-  CHECK(img.at(0, 0)[3] == 0);                  // corners: background
-  CHECK(img.at(32, 24)[3] > 0);                 // centre: the part (its top fill has gaps)
-  CHECK(img.at(32, 5)[3] == 255);               // the wall's rim
+  CHECK(img.at(0, 0)[3] == 0);     // corners: background
+  CHECK(img.at(32, 24)[3] > 0);    // centre: the part (its top fill has gaps)
+  CHECK(img.at(32, 5)[3] == 255);  // the wall's rim
   const int covered = opaque_pixels(img);
-  CHECK(covered > 64 * 48 / 4);                 // a disc filling most of the height
+  CHECK(covered > 64 * 48 / 4);  // a disc filling most of the height
   CHECK(covered < 64 * 48 * 3 / 4);
   int partial = 0, lo = 255, hi = 0;
   for (int y = 0; y < 48; ++y)
@@ -98,15 +100,16 @@ TEST_CASE("thumbnails: the vase renders as a shaded, anti-aliased disc on a tran
       partial += p[3] > 0 && p[3] < 255;
       if (p[3] == 255) lo = std::min<int>(lo, p[0]), hi = std::max<int>(hi, p[0]);
     }
-  CHECK(partial > 20);   // edges are blended
-  CHECK(hi - lo > 30);   // shading varies over the surface
+  CHECK(partial > 20);  // edges are blended
+  CHECK(hi - lo > 30);  // shading varies over the surface
   const Image empty = render_thumbnail(PreviewPrint{}, 8, 8);
   CHECK(opaque_pixels(empty) == 0);
 }
 
 TEST_CASE("thumbnails: islands render before any toolpath, holes left open") {
   geo::Polygon ring;
-  ring.outer = {geo::to_point(-10, -10), geo::to_point(10, -10), geo::to_point(10, 10), geo::to_point(-10, 10)};
+  ring.outer = {geo::to_point(-10, -10), geo::to_point(10, -10), geo::to_point(10, 10),
+                geo::to_point(-10, 10)};
   ring.holes = {{geo::to_point(-5, -5), geo::to_point(-5, 5), geo::to_point(5, 5), geo::to_point(5, -5)}};
   HeightCanvas canvas(40, 40, BoxMm{90, 90, 110, 110});
   canvas.add_polygon(ring, 100, 100, 5);
@@ -132,17 +135,26 @@ TEST_CASE("thumbnails: QOI follows the specification") {
   // Hand-encoded from the specification: a run of the initial pixel, an RGB op, a diff, a luma
   // op, an index hit and an RGBA op.
   Image tiny(6, 1);
-  const uint8_t px[6][4] = {{0, 0, 0, 255}, {10, 20, 30, 255}, {11, 19, 30, 255}, {31, 39, 50, 255}, {10, 20, 30, 255}, {1, 2, 3, 4}};
+  const uint8_t px[6][4] = {{0, 0, 0, 255},    {10, 20, 30, 255}, {11, 19, 30, 255},
+                            {31, 39, 50, 255}, {10, 20, 30, 255}, {1, 2, 3, 4}};
   for (int i = 0; i < 6; ++i) std::copy(px[i], px[i] + 4, tiny.at(i, 0));
   auto q = encode_qoi(tiny);
   REQUIRE(q.ok());
   const std::string body = q->substr(14, q->size() - 14 - 8);
-  const uint8_t want[] = {0xc0,                      // run of 1: (0,0,0,255) is the initial pixel
-                          0xfe, 10, 20, 30,          // RGB
+  const uint8_t want[] = {0xc0,  // run of 1: (0,0,0,255) is the initial pixel
+                          0xfe,
+                          10,
+                          20,
+                          30,                          // RGB
                           0x40 | 3 << 4 | 1 << 2 | 2,  // diff +1 -1 0
-                          0x80 | (20 + 32), (0 + 8) << 4 | (0 + 8),  // luma: dg 20, dr-dg 0, db-dg 0
+                          0x80 | (20 + 32),
+                          (0 + 8) << 4 | (0 + 8),  // luma: dg 20, dr-dg 0, db-dg 0
                           static_cast<uint8_t>((10 * 3 + 20 * 5 + 30 * 7 + 255 * 11) % 64),  // index
-                          0xff, 1, 2, 3, 4};         // RGBA
+                          0xff,
+                          1,
+                          2,
+                          3,
+                          4};  // RGBA
   CHECK(body == std::string(reinterpret_cast<const char*>(want), sizeof want));
   CHECK(q->substr(0, 14) == std::string("qoif\0\0\0\x06\0\0\0\x01\x04\x00", 14));
 
@@ -202,7 +214,9 @@ TEST_CASE("thumbnails: PrusaSlicer's G-code comment block") {
 TEST_CASE("thumbnails: a bad size list says which entry and what to write") {
   auto r = parse_thumbnail_specs("16x16/QOI, 300x/PNG");
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().to_string() == "thumbnails: '300x/PNG': not a size; write WxH or WxH/PNG or WxH/QOI, e.g. \"16x16/QOI, 300x300/PNG\"");
+  CHECK(
+      r.error().to_string() ==
+      "thumbnails: '300x/PNG': not a size; write WxH or WxH/PNG or WxH/QOI, e.g. \"16x16/QOI, 300x300/PNG\"");
   r = parse_thumbnail_specs("220x124/JPG");
   REQUIRE_FALSE(r.ok());
   CHECK(r.error().message.find("format 'JPG' is not PNG or QOI") != std::string::npos);

@@ -38,18 +38,28 @@ int main(int argc, char** argv) {
   auto front = [](int li) { return fixture::kCy - fixture::outer_radius(li); };  // bottom of the outer circle
   const float d = 0.7071068f;  // a point on the 45°/135° infill line through the centre
   std::string j = "{\"layers\":" + std::to_string(layers) + ",\"probes\":[";
-  auto probe = [&](const char* name, int li, float x, float y, PathKind kind, const char* rule, const char* where) {
-    j += fmt::format("{}{{\"name\":\"{}\",\"layer\":{},\"x\":{},\"y\":{},\"kind\":\"{}\",\"colour\":\"{}\",\"rule\":\"{}\",\"where\":\"{}\"}}",
-                     j.back() == '[' ? "" : ",", name, li, x, y, schema::enum_value_name(schema::EnumType::PathKind, static_cast<int>(kind)),
-                     to_hex(kind_colour(kind)), rule, where);
+  auto probe = [&](const char* name, int li, float x, float y, PathKind kind, const char* rule,
+                   const char* where) {
+    j += fmt::format(
+        "{}{{\"name\":\"{}\",\"layer\":{},\"x\":{},\"y\":{},\"kind\":\"{}\",\"colour\":\"{}\",\"rule\":\"{}"
+        "\",\"where\":\"{}\"}}",
+        j.back() == '[' ? "" : ",", name, li, x, y,
+        schema::enum_value_name(schema::EnumType::PathKind, static_cast<int>(kind)),
+        to_hex(kind_colour(kind)), rule, where);
   };
-  probe("outer wall, slow", mid, fixture::kCx, front(mid), PathKind::OuterPerimeter, "slow walls", "fixture.rules:4");
-  probe("outer wall, top", top, fixture::kCx, front(top), PathKind::OuterPerimeter, "slow walls", "fixture.rules:4");
-  probe("outer wall, default", 2, fixture::kCx, front(2), PathKind::OuterPerimeter, "outer perimeter speed", "stdlib/defaults.rules:14");
-  probe("overhang piece", fixture::kOverhangLayer, fixture::kCx, fixture::kCy + fixture::outer_radius(fixture::kOverhangLayer),
-        PathKind::OuterPerimeter, "overhangs", "fixture.rules:20");
-  probe("infill", 4, fixture::kCx + 3 * d, fixture::kCy + 3 * d, PathKind::Infill, "fast infill", "fixture.rules:7");
-  probe("top solid", top, fixture::kCx + 3 * d, fixture::kCy - 3 * d, PathKind::TopSolid, "top speed", "stdlib/defaults.rules:18");
+  probe("outer wall, slow", mid, fixture::kCx, front(mid), PathKind::OuterPerimeter, "slow walls",
+        "fixture.rules:4");
+  probe("outer wall, top", top, fixture::kCx, front(top), PathKind::OuterPerimeter, "slow walls",
+        "fixture.rules:4");
+  probe("outer wall, default", 2, fixture::kCx, front(2), PathKind::OuterPerimeter, "outer perimeter speed",
+        "stdlib/defaults.rules:14");
+  probe("overhang piece", fixture::kOverhangLayer, fixture::kCx,
+        fixture::kCy + fixture::outer_radius(fixture::kOverhangLayer), PathKind::OuterPerimeter, "overhangs",
+        "fixture.rules:20");
+  probe("infill", 4, fixture::kCx + 3 * d, fixture::kCy + 3 * d, PathKind::Infill, "fast infill",
+        "fixture.rules:7");
+  probe("top solid", top, fixture::kCx + 3 * d, fixture::kCy - 3 * d, PathKind::TopSolid, "top speed",
+        "stdlib/defaults.rules:18");
   j += "]}\n";
   std::ofstream(argv[2]) << j;
   return 0;
