@@ -70,7 +70,7 @@
     const colourSel = $('colour');
     const applyColour = () => {
       view.mode = colourSel.value;
-      view.slot = Number(slotSel.value);
+      view.slot = slotSel.value === '' ? -1 : Number(slotSel.value);  // '' : a slot nothing recorded
       $('slot-box').style.display = view.mode === 'rule' ? '' : 'none';
       view.invalidate();
       legend(view);
