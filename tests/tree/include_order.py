@@ -24,11 +24,11 @@ COMPONENTS = [
     ("geometry/mesh", ["geometry/core"]),
     ("geometry/slice", ["geometry/mesh"]),
     ("geometry/polygon", ["geometry/core"]),
+    ("geometry/preview", ["geometry/core", "runtime/schema"]),
     ("geometry/io", ["geometry/polygon", "geometry/slice"]),
     ("geometry/fillangle", ["geometry/core", "runtime/context"]),
     ("geometry/toolpath", ["geometry/polygon", "runtime/context"]),
     ("geometry/gcode", ["geometry/toolpath"]),
-    ("geometry/preview", ["geometry/core", "runtime/schema"]),
     ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "geometry/preview", "runtime/vm"]),
     ("apps", ["geometry/pipeline", "compiler"]),
 ]
