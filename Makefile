@@ -13,7 +13,7 @@ FUZZ_SECONDS ?= 30
 
 NAME := $(basename $(notdir $(MODEL)))
 
-.PHONY: all deps configure build slice test check fuzz fuzz-build bench format clean example
+.PHONY: all deps configure build slice test check fuzz fuzz-build bench format clean example preview-screenshot
 
 all: build
 
@@ -49,6 +49,11 @@ fuzz: fuzz-build
 
 bench: build
 	@bench/run.sh $(BUILD)
+
+# docs/images/preview.png, made by the preview's browser test (needs node, npm and Chromium).
+preview-screenshot: build
+	@bash tests/geometry/preview/browser/run.sh $(BUILD)/preview-browser-test $(BUILD)/tests/preview_fixture \
+	  --screenshot docs/images/preview.png
 
 example: build
 	@scripts/run-example.sh $(BUILD) $(NAME)

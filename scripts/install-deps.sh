@@ -10,14 +10,18 @@ PKGS=(
   antlr4 libantlr4-runtime-dev default-jre-headless
   pybind11-dev python3-dev
   libpugixml-dev
+  zlib1g-dev libpng-dev
   liblua5.4-dev
   clang libclang-rt-dev
   python3-shapely python3-numpy python3-matplotlib
+  chromium
 )
 # Peers for side-by-side comparison in bench/ (optional; `--with-peers`).
 PEERS=(prusa-slicer cura-engine slic3r time)
 
 want=("${PKGS[@]}")
+# zlib: the preview's data and PNG thumbnails; libpng: the tests decode the thumbnails with it.
+# chromium: the preview's browser test (tests/geometry/preview/browser) runs it headless.
 # npm fetches test models (stl-models); a machine whose Node.js already bundles npm keeps it.
 if ! command -v npm >/dev/null 2>&1; then want+=(npm); fi
 if [[ "${1:-}" == "--with-peers" ]]; then want+=("${PEERS[@]}"); fi

@@ -24,6 +24,7 @@ COMPONENTS = [
     ("geometry/mesh", ["geometry/core"]),
     ("geometry/slice", ["geometry/mesh"]),
     ("geometry/polygon", ["geometry/core"]),
+    ("geometry/preview", ["geometry/core", "runtime/schema"]),
     ("geometry/io", ["geometry/polygon", "geometry/slice"]),
     ("geometry/toolpath", ["geometry/polygon", "runtime/schema"]),
     ("geometry/fillangle", ["geometry/core", "runtime/context"]),
@@ -31,7 +32,7 @@ COMPONENTS = [
     ("geometry/plan", ["geometry/setup"]),
     ("geometry/gcode", ["geometry/plan"]),
     ("geometry/export", ["geometry/plan", "geometry/io"]),
-    ("geometry/pipeline", ["geometry/export", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
+    ("geometry/pipeline", ["geometry/export", "geometry/gcode", "geometry/fillangle", "geometry/preview", "runtime/vm"]),
     ("apps", ["geometry/pipeline", "compiler"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
