@@ -48,7 +48,11 @@ Status ScriptAngles::decide(schema::Stage stage, const ctx::Context& ctx, ctx::P
   if (stage != schema::Stage::Island) return ok_status();
   auto l = static_cast<size_t>(ctx.get(FieldId::LayerIndex));
   auto i = static_cast<size_t>(ctx.get(FieldId::IslandIndex));
-  if (l < angles_.size() && i < angles_[l].size()) props[schema::PropId::FillAngle] = angles_[l][i];
+  if (l < angles_.size() && i < angles_[l].size()) {
+    props[schema::PropId::FillAngle] = angles_[l][i];
+    if (ctx::Trace* t = ctx.trace())
+      t->step({schema::PropId::FillAngle, ctx::TraceStep::Source::Middle, UINT32_MAX, UINT32_MAX, angles_[l][i], 0});
+  }
   return ok_status();
 }
 

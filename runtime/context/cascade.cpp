@@ -19,6 +19,9 @@ Result<std::unique_ptr<Cascade>> Cascade::create(const std::vector<std::pair<std
 
 Status Cascade::decide(schema::Stage stage, Context& c, PropertyValues& props) const {
   c.set_props(&props);
+  if (Trace* t = c.trace())
+    for (const auto& info : schema::properties())
+      if (info.stage == stage) t->step({info.id, TraceStep::Source::Start, UINT32_MAX, UINT32_MAX, props[info.id], 0});
   for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
                            static_cast<const Decider*>(&overrides_)})
     if (d)

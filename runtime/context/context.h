@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "runtime/context/trace.h"
 #include "runtime/schema/schema.h"
 
 namespace tranche::ctx {
@@ -101,6 +102,8 @@ class Context {
   // Properties decided so far for this element (its stage and every earlier one).
   const PropertyValues& props() const { return *props_; }
   double prop(PropId id) const { return (*props_)[id]; }
+  // Where decisions are recorded (provenance), or null: nothing is recorded.
+  Trace* trace() const { return trace_; }
 
   // Writers, used by the loop that owns the context.
   void set(FieldId id, double v) { values_[slot(id)] = v; }
@@ -117,6 +120,7 @@ class Context {
   void set_pieces(Collection c) { pieces_ = c; }
   void set_islands(Collection c) { islands_ = c; }
   void set_props(const PropertyValues* p) { props_ = p; }
+  void set_trace(Trace* t) { trace_ = t; }
 
  private:
   std::array<double, schema::kFieldCount> values_{};
@@ -125,6 +129,7 @@ class Context {
   std::span<const PointMm> points_;
   Collection pieces_, islands_;
   const PropertyValues* props_;
+  Trace* trace_ = nullptr;
 };
 
 }  // namespace tranche::ctx

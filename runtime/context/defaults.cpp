@@ -55,8 +55,12 @@ BuiltinDefaults::BuiltinDefaults() {
 }
 
 Status BuiltinDefaults::decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const {
-  for (const auto& r : kRules)
-    if (schema::property(r.prop).stage == stage && matches(r, ctx)) props[r.prop] = r.result;
+  for (uint32_t i = 0; i < std::size(kRules); ++i) {
+    const BuiltinRule& r = kRules[i];
+    if (schema::property(r.prop).stage != stage || !matches(r, ctx)) continue;
+    props[r.prop] = r.result;
+    if (Trace* t = ctx.trace()) t->step({r.prop, TraceStep::Source::BuiltinDefault, i, UINT32_MAX, r.result, 0});
+  }
   return ok_status();
 }
 

@@ -209,9 +209,12 @@ Result<Overrides> Overrides::parse(const std::vector<std::pair<std::string, std:
   return out;
 }
 
-Status Overrides::decide(schema::Stage stage, const Context&, PropertyValues& props) const {
-  for (const auto& o : items_)
-    if (schema::property(o.prop).stage == stage) props[o.prop] = o.value;
+Status Overrides::decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const {
+  for (const auto& o : items_) {
+    if (schema::property(o.prop).stage != stage) continue;
+    props[o.prop] = o.value;
+    if (Trace* t = ctx.trace()) t->step({o.prop, recorded_as, UINT32_MAX, UINT32_MAX, o.value, 0});
+  }
   return ok_status();
 }
 

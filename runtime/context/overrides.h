@@ -41,6 +41,9 @@ class Overrides final : public Decider {
   Status decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const override;
   schema::Level varies_at(schema::Stage) const override { return schema::Level::Print; }
   bool reads(schema::FieldId) const override { return false; }
+  // What a trace calls these values: --set (the top of the cascade), or the middle layer (the
+  // values `rulec explain --at` gives below the rules).
+  TraceStep::Source recorded_as = TraceStep::Source::Set;
 
  private:
   std::vector<Override> items_;

@@ -125,6 +125,7 @@ class Machine {
   uint32_t fault_chunk_ = 0, fault_pc_ = 0;
   std::unique_ptr<Error> api_error_;  // set with Fault::Api
   uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
+  uint16_t depth_read_ = 0;     // values read as "the rules before" being computed (for traces)
   uint64_t run_ = 0, rebuilds_ = 0;
 
   friend class RuleSet;
@@ -278,7 +279,15 @@ bool Machine::resolve(schema::PropId q, uint32_t below, double& result) {
   int i;
   if (!winner(q, below, i)) return false;
   if (i < 0) return result = props_->base[static_cast<size_t>(q)], true;
-  return value(q, i, result);
+  ++depth_read_;
+  const bool ok = value(q, i, result);
+  --depth_read_;
+  if (ok)
+    if (ctx::Trace* t = ctx_.trace()) {
+      const Candidate& c = p_.props[static_cast<size_t>(q)][static_cast<size_t>(i)];
+      t->step({q, ctx::TraceStep::Source::Rule, c.rule, c.chunk, result, static_cast<uint16_t>(depth_read_ + 1)});
+    }
+  return ok;
 }
 
 #if defined(__GNUC__)
@@ -748,8 +757,10 @@ Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& 
     double v;
     if (!m.value(q, i, v)) return m.error();
     const Range& range = ranges_[static_cast<size_t>(q)];
+    ctx::Trace* trace = c.trace();
     if (range.plain && v >= range.min && v <= range.max) {  // the common case: a number in range
       props[q] = v;
+      if (trace) trace->step({q, ctx::TraceStep::Source::Rule, cand_rule(q, i), cand_chunk(q, i), v, 0});
       continue;
     }
     auto checked = check_value(q, v);
@@ -761,6 +772,7 @@ Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& 
                    fmt::format("in {}: {}", rule_name(cand.rule), checked.error().message)};
     }
     props[q] = *checked;
+    if (trace) trace->step({q, ctx::TraceStep::Source::Rule, cand_rule(q, i), cand_chunk(q, i), *checked, 0});
   }
   return ok_status();
 }
@@ -791,10 +803,30 @@ Status RuleSet::run(Level level, ctx::When when, const ctx::Context& c, ctx::Lin
     break;
   }
   state().text.clear();
+  ctx::Trace* trace = c.trace();
   auto body = [&](const Candidate* cand) -> Status {
     double unused;
     m.rule_ = cand->rule;
-    if (!m.exec(cand->chunk, unused)) return m.error();
+    if (!trace) {
+      if (!m.exec(cand->chunk, unused)) return m.error();
+      return ok_status();
+    }
+    // Traced: the executor's lines, captured on their way to `out`.
+    struct Tee final : ctx::LineSink {
+      ctx::LineSink& to;
+      std::string text;
+      explicit Tee(ctx::LineSink& o) : to(o) {}
+      void line(std::string_view l) override {
+        if (!text.empty()) text.push_back('\n');
+        text.append(l);
+        to.line(l);
+      }
+    } tee(out);
+    m.out = &tee;
+    const bool ok = m.exec(cand->chunk, unused);
+    m.out = &out;
+    if (!ok) return m.error();
+    trace->hook(level, when, cand->rule, tee.text);
     return ok_status();
   };
   if (base)
@@ -817,6 +849,7 @@ Result<bool> RuleSet::replace(Level level, const ctx::Context& c, ctx::ReplaceAp
     double unused;
     m.rule_ = cand.rule;
     if (!m.exec(cand.chunk, unused)) return m.error();
+    if (ctx::Trace* t = c.trace()) t->replaced(level, cand.rule);
     return true;
   }
   return false;

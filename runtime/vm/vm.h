@@ -76,6 +76,8 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
  private:
   explicit RuleSet(Program p);
   void analyse();
+  uint32_t cand_rule(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].rule; }
+  uint32_t cand_chunk(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].chunk; }
   friend class Machine;
 
   Program program_;

@@ -230,3 +230,38 @@ TEST_CASE("cascade: layer heights follow first_layer_height, layer_height and --
   }
   CHECK_FALSE(Cascade::create({{"layer_hieght", "0.1"}}).ok());
 }
+
+TEST_CASE("the cascade records each layer's decision in a trace, lowest first, and nothing without one") {
+  struct Recorder final : Trace {
+    std::vector<TraceStep> steps;
+    void step(const TraceStep& s) override { steps.push_back(s); }
+  } r;
+  struct Traced final : Decider {  // a middle layer that records, as ScriptAngles does
+    Status decide(Stage st, const Context& ctx, PropertyValues& props) const override {
+      if (st != Stage::Island) return ok_status();
+      props[PropId::FillAngle] = 30;
+      if (ctx.trace()) ctx.trace()->step({PropId::FillAngle, TraceStep::Source::Middle, UINT32_MAX, UINT32_MAX, 30, 0});
+      return ok_status();
+    }
+    Level varies_at(Stage) const override { return Level::Print; }
+  } middle;
+  auto cascade = Cascade::create({{"fill_angle", "10"}});
+  REQUIRE(cascade.ok());
+  (*cascade)->set_middle(&middle);
+  Context c;
+  c.set(FieldId::LayerIndex, 1);
+  c.set_trace(&r);
+  PropertyValues p = PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide(Stage::Island, c, p).ok());
+  std::vector<std::pair<TraceStep::Source, double>> angle;
+  for (const auto& s : r.steps)
+    if (s.prop == PropId::FillAngle) angle.emplace_back(s.source, s.value);
+  using S = TraceStep::Source;
+  CHECK(angle == std::vector<std::pair<S, double>>{{S::Start, 45}, {S::BuiltinDefault, 135}, {S::Middle, 30}, {S::Set, 10}});
+  const size_t n = r.steps.size();
+  c.set_trace(nullptr);
+  p = PropertyValues::schema_defaults();
+  REQUIRE((*cascade)->decide(Stage::Island, c, p).ok());
+  CHECK(r.steps.size() == n);
+  CHECK(p[PropId::FillAngle] == 10);
+}

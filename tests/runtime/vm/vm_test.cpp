@@ -504,3 +504,79 @@ TEST_CASE("vm: a value that is not a number, a negative square root and a runawa
   CHECK(r.error().message.find("more than 65536 characters") != std::string::npos);
   CHECK(r.error().message.find("\"big\"") != std::string::npos);
 }
+
+namespace {
+struct Recorder final : ctx::Trace {
+  std::vector<ctx::TraceStep> steps;
+  std::vector<std::pair<uint32_t, std::string>> hooks;
+  std::vector<uint32_t> replacers;
+  void step(const ctx::TraceStep& s) override { steps.push_back(s); }
+  void hook(Level, ctx::When, uint32_t rule, std::string_view text) override { hooks.emplace_back(rule, text); }
+  void replaced(Level, uint32_t rule) override { replacers.push_back(rule); }
+};
+}  // namespace
+
+TEST_CASE("vm: a trace records the deciding rule and the values it read from the rules before it") {
+  auto rs = test::rules(R"(
+rule "profile" { speed = 80 mm/s }
+rule "half on small islands" when island.area < 4 mm2 { speed = speed * 50% }
+rule "again" when island.area < 1 mm2 { speed = speed - 10 mm/s }
+)");
+  ctx::Context c;
+  c.clear_from(Level::Island);
+  c.set(FieldId::IslandArea, 0.5);
+  Recorder r;
+  c.set_trace(&r);
+  CHECK(test::decide(*rs, Stage::Piece, c)[PropId::Speed] == 30);
+  // Inner reads first (deepest first), then the decision: 80 (rule 0) -> 40 (rule 1) -> 30 (rule 2).
+  REQUIRE(r.steps.size() == 3);
+  CHECK(r.steps[0].rule == 0);
+  CHECK(r.steps[0].value == 80);
+  CHECK(r.steps[0].depth == 2);
+  CHECK(r.steps[1].rule == 1);
+  CHECK(r.steps[1].value == 40);
+  CHECK(r.steps[1].depth == 1);
+  CHECK(r.steps[2].rule == 2);
+  CHECK(r.steps[2].value == 30);
+  CHECK(r.steps[2].depth == 0);
+  for (const auto& s : r.steps) CHECK(s.source == ctx::TraceStep::Source::Rule);
+  CHECK(rs->rule_name(r.steps[1].rule) == "rule \"half on small islands\"");
+  // Without a trace nothing is recorded (and the result is the same).
+  c.set_trace(nullptr);
+  CHECK(test::decide(*rs, Stage::Piece, c)[PropId::Speed] == 30);
+  CHECK(r.steps.size() == 3);
+}
+
+TEST_CASE("vm: a trace records executors with their text, and the replacer that ran") {
+  auto rs = test::rules(R"(
+rule "pa" when path.kind == outer_perimeter { before path { gcode "M900 K0.04" } }
+rule "extra" when path.kind == outer_perimeter { before path append { gcode "; hello" } }
+rule "wavy" when path.kind == top_solid { replace path { default } }
+)");
+  ctx::Context c;
+  auto props = ctx::PropertyValues::schema_defaults();
+  c.set_props(&props);
+  c.set(FieldId::PathKind, static_cast<double>(schema::PathKind::OuterPerimeter));
+  Recorder r;
+  c.set_trace(&r);
+  test::Lines out;
+  REQUIRE(rs->run(Level::Path, ctx::When::Before, c, out).ok());
+  CHECK(out.joined() == "M900 K0.04\n; hello\n");
+  REQUIRE(r.hooks.size() == 2);
+  CHECK(r.hooks[0] == std::pair<uint32_t, std::string>{0, "M900 K0.04"});
+  CHECK(r.hooks[1] == std::pair<uint32_t, std::string>{1, "; hello"});
+  struct Api final : ctx::ReplaceApi {
+    void move_to(double, double, const ctx::MoveOptions&) override {}
+    void gcode(std::string_view) override {}
+    void comment(std::string_view) override {}
+    Status emit_default() override { return ok_status(); }
+    Status offset(double) override { return ok_status(); }
+    Status reverse() override { return ok_status(); }
+    void retract() override {}
+  } api;
+  c.set(FieldId::PathKind, static_cast<double>(schema::PathKind::TopSolid));
+  auto replaced = rs->replace(Level::Path, c, api);
+  REQUIRE(replaced.ok());
+  CHECK(*replaced);
+  CHECK(r.replacers == std::vector<uint32_t>{2});
+}
