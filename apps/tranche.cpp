@@ -27,6 +27,8 @@ options:
   --set KEY=VALUE              override a property, e.g. --set layer_height=0.15 (repeatable)
   --export-svg FILE            write every layer as SVG: its islands and the paths printed on them
   --export-layers FILE         write every layer as JSON: its islands and the paths printed on them
+  --export-preview FILE        write the toolpaths as one HTML page: layers, colours by kind, speed,
+                               flow, width, fan or deciding rule, and why each path is as it is
   --exact-cells                the exports also show each island's exact monotone cells (the
                                seed's decomposition: an analysis view, not what is printed)
   --overlap MODE               additive (default), boolean, or subtractive (SVG only)
@@ -90,6 +92,8 @@ int main(int argc, char** argv) {
       if (!value(opt.export_svg)) return usage_error("--export-svg needs a file name");
     } else if (a == "--export-layers") {
       if (!value(opt.export_layers)) return usage_error("--export-layers needs a file name");
+    } else if (a == "--export-preview") {
+      if (!value(opt.export_preview)) return usage_error("--export-preview needs a file name");
     } else if (a == "--exact-cells") {
       opt.exact_cells = true;
     } else if (a == "--overlap") {

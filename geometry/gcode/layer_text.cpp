@@ -133,6 +133,7 @@ class Formatter final : public ctx::LineSink {
 
   // walk_layer visitor.
   void island_begin(const IslandPlan& ip) {
+    island_ = ip.index;
     ctx_.clear_from(Level::Island);
     plan::set_island_fields(ctx_, ip);
     ctx_.set_props(&ip.props);
@@ -157,6 +158,7 @@ class Formatter final : public ctx::LineSink {
     hook(Level::Cell, ctx::When::After);
   }
   void path_begin(const IslandPlan*, const PathPlan& p) {
+    path_ = &p;
     if (!exec_) return;
     ctx_.clear_from(Level::Path);
     plan::set_path_fields(ctx_, p);
@@ -169,6 +171,7 @@ class Formatter final : public ctx::LineSink {
     if (!exec_) return;
     ctx_.set_props(&p.props);
     hook(Level::Path, ctx::When::After);
+    path_ = nullptr;
   }
   void path_default(const IslandPlan*, const PathPlan& p) {
     if (p.pts.empty()) return;
@@ -213,8 +216,26 @@ class Formatter final : public ctx::LineSink {
  private:
   void hook(Level level, ctx::When when) {
     if (!exec_ || !status_ || !exec_->has(level, when)) return;
+    if (!S.provenance) {
+      status_ = exec_->run(level, when, ctx_, *this);
+      return;
+    }
+    Notes notes(out_, path_, island_);
+    ctx_.set_trace(&notes);
     status_ = exec_->run(level, when, ctx_, *this);
+    ctx_.set_trace(nullptr);
   }
+  // Records each executor's G-code into LayerText::hooks.
+  struct Notes final : ctx::Trace {
+    LayerText& out;
+    const PathPlan* path;
+    int island;
+    Notes(LayerText& o, const PathPlan* p, int i) : out(o), path(p), island(i) {}
+    void step(const ctx::TraceStep&) override {}
+    void hook(Level level, ctx::When when, uint32_t rule, std::string_view text) override {
+      out.hooks.push_back({path, island, level, when == ctx::When::After, rule, std::string(text)});
+    }
+  };
   void mark(LayerText::Mark::Kind k, double v) { out_.marks.push_back({out_.text.size(), k, v}); }
   void fan(double v) {
     if (v == fan_) return;
@@ -355,6 +376,8 @@ class Formatter final : public ctx::LineSink {
   PathKind type_ = PathKind::Custom;
   float width_ = -1;
   geo::Point pos_;
+  const PathPlan* path_ = nullptr;  // the path being written (provenance of its hooks)
+  int island_ = -1;
 };
 
 }  // namespace

@@ -34,6 +34,16 @@ struct LayerText {
   bool ends_retracted = false;  // a retraction (a replacer's) that no extrusion of the layer undid
   int travels = 0, retractions = 0;
   std::shared_ptr<const toolpath::Comber> comber;  // the layer's material, to comb the layer change
+  // Provenance (PrintSetup::provenance): the G-code each executor added, and where.
+  struct HookNote {
+    const plan::PathPlan* path = nullptr;  // the path it ran around (null: a layer or island hook)
+    int island = -1;                       // the island's index, for island and path hooks
+    schema::Level level = schema::Level::Path;
+    bool after = false;
+    uint32_t rule = 0;
+    std::string text;
+  };
+  std::vector<HookNote> hooks;
 };
 
 // G-code words for the flavour's fan command (ratio 0..1): "M106 S255", "M107", "M106 P0 S0.5".

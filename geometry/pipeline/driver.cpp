@@ -8,6 +8,7 @@
 #include <atomic>
 #include <memory>
 
+#include "geometry/pipeline/preview_adapter.h"
 #include "geometry/plan/layer_loop.h"
 #include "geometry/polygon/decompose.h"
 
@@ -21,6 +22,7 @@ struct Item {
   double time_s = 0, height = 0;
   gcode::LayerText text;
   fmt::memory_buffer svg, json;
+  preview::PreviewLayer preview;
   Report warnings;  // passed on in layer order
 };
 
@@ -52,7 +54,7 @@ void make_item(Item& item, const setup::PrintSetup& setup, const ctx::Cascade& c
   }
   item.time_s = plan->time_s;
   item.height = plan->height;
-  if (out.gcode) {
+  if (out.gcode || out.preview) {  // the preview reads the executors' notes from the text
     auto text = gcode::format_layer(setup, cascade.executors(), *plan);
     if (!text) {
       item.status = text.error();
@@ -71,6 +73,7 @@ void make_item(Item& item, const setup::PrintSetup& setup, const ctx::Cascade& c
     if (out.svg) exports::LayersSvg::append_layer(item.svg, e, static_cast<size_t>(item.index), *out.sheet);
     if (out.json) exports::LayersJson::append_layer(item.json, e);
   }
+  if (out.preview) item.preview = preview_layer(setup, *plan, &item.text, out.rules);
 }
 
 // Writes one layer to every output, in order.
@@ -81,6 +84,8 @@ Status write_item(const Item& item, const LayerOutputs& out) {
     if (Status s = out.svg->write_layer(item.svg); !s) return s;
   if (out.json)
     if (Status s = out.json->write_layer(item.json); !s) return s;
+  if (out.preview)
+    if (Status s = out.preview->add_layer(item.preview); !s) return s;
   return ok_status();
 }
 

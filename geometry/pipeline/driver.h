@@ -11,8 +11,10 @@
 #include "geometry/export/layers_json.h"
 #include "geometry/export/layers_svg.h"
 #include "geometry/gcode/writer.h"
+#include "geometry/preview/preview_data.h"
 #include "geometry/setup/print_setup.h"
 #include "runtime/context/cascade.h"
+#include "runtime/vm/vm.h"
 
 namespace tranche::pipeline {
 
@@ -23,7 +25,9 @@ struct LayerOutputs {
   const exports::Sheet* sheet = nullptr;  // the SVG's layout
   exports::LayersJson* json = nullptr;
   std::span<const geo::Layer> resolved;  // the layers as resolved: the exports draw their islands
-  bool exact_cells = false;  // the exports also show the seed's exact cells (analysis)
+  bool exact_cells = false;
+  preview::PreviewEncoder* preview = nullptr;  // --export-preview (needs PrintSetup::provenance for the chains)
+  const vm::RuleSet* rules = nullptr;          // names the rules in the preview's provenance  // the exports also show the seed's exact cells (analysis)
   int threads = 0;           // 0: TBB's default
 };
 

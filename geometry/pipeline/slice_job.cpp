@@ -12,6 +12,7 @@
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/driver.h"
 #include "geometry/pipeline/progress.h"
+#include "geometry/preview/preview_html.h"
 #include "geometry/polygon/layers.h"
 #include "geometry/setup/print_setup.h"
 #include "geometry/slice/layer_heights.h"
@@ -224,6 +225,7 @@ Result<Loaded> load_stl(const SliceOptions& o, const ctx::Cascade& cascade, Prog
 
 // The outputs of a run, open while the layers are written.
 struct Outputs {
+  std::unique_ptr<preview::PreviewEncoder> preview;
   std::unique_ptr<gcode::GcodeWriter> gcode;
   std::unique_ptr<exports::LayersSvg> svg;
   std::unique_ptr<exports::LayersJson> json;
@@ -250,6 +252,10 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
     if (!s) return s.error();
     out.svg = std::move(*s);
   }
+  if (!o.export_preview.empty())
+    out.preview = std::make_unique<preview::PreviewEncoder>(static_cast<float>(setup.print_props[schema::PropId::BedSizeX]),
+                                                            static_cast<float>(setup.print_props[schema::PropId::BedSizeY]),
+                                                            o.model);
   if (!o.export_layers.empty()) {
     auto j = exports::LayersJson::open(o.export_layers, o.model, setup.layers.size(), true, o.exact_cells);
     if (!j) return j.error();
@@ -261,7 +267,8 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
 // The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
 // angles, then every layer planned and written.
 Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScript* script,
-                            const SliceOptions& options, Progress& progress, ctx::Cascade& cascade, Report& report) {
+                            const SliceOptions& options, Progress& progress, ctx::Cascade& cascade,
+                            const vm::RuleSet* rules, Report& report) {
   auto tick = [&](size_t done) { progress.update(done); };
   std::vector<geo::Layer>& layers = in.layers;
   // Islands (geometry/polygon): SVG input arrives with its overlap mode already applied.
@@ -279,6 +286,7 @@ Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScri
 
   auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
   if (!setup) return setup.error();
+  (*setup)->provenance = !options.export_preview.empty();
   std::unique_ptr<geo::ScriptAngles> angles;
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
     progress.start("fill angles");
@@ -297,6 +305,8 @@ Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScri
   lo.json = outputs->json.get();
   lo.resolved = layers;
   lo.exact_cells = options.exact_cells;
+  lo.preview = outputs->preview.get();
+  lo.rules = rules;
   progress.start("toolpaths", layers.size());
   if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();
   summary.layers = static_cast<int>(layers.size());
@@ -316,6 +326,10 @@ Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScri
     if (Status s = outputs->json->finish(); !s) return s.error();
     summary.written.push_back(options.export_layers);
   }
+  if (outputs->preview) {
+    if (Status s = preview::write_preview_html(options.export_preview, *outputs->preview); !s) return s.error();
+    summary.written.push_back(options.export_preview);
+  }
   progress.finish(detail);
   return summary;
 }
@@ -323,8 +337,10 @@ Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScri
 }  // namespace
 
 Status check_options(const SliceOptions& options) {
-  if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty())
-    return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE and/or --export-layers FILE"};
+  if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty() &&
+      options.export_preview.empty())
+    return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE, --export-layers FILE and/or "
+                     "--export-preview FILE.html"};
   return ok_status();
 }
 
@@ -354,12 +370,12 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* r
     auto loaded = load_svg(options, **cascade, report);
     if (!loaded) return loaded.error();
     progress.finish(fmt::format("{} layers", loaded->layers.size()));
-    return finish(*loaded, summary, script.get(), options, progress, **cascade, report);
+    return finish(*loaded, summary, script.get(), options, progress, **cascade, rs, report);
   }
   auto loaded = load_stl(options, **cascade, progress, report);
   if (!loaded) return loaded.error();
   summary.triangles = loaded->triangles;
-  return finish(*loaded, summary, script.get(), options, progress, **cascade, report);
+  return finish(*loaded, summary, script.get(), options, progress, **cascade, rs, report);
 }
 
 }  // namespace tranche::pipeline

@@ -13,7 +13,7 @@ Status decide_cooling(LayerPlan& plan, Nest& nest) {
   c.set(FieldId::LayerTime, plan.time_s);
   if (nest.cooling_at() <= Level::Layer) {
     ctx::PropertyValues props = plan.props;
-    if (Status s = nest.decide(Stage::Cooling, props); !s) return s;
+    if (Status s = nest.decide(Stage::Cooling, props, plan.trace); !s) return s;
     const float fan = static_cast<float>(props[PropId::Fan]);
     plan.props[PropId::Fan] = fan;
     for (auto& p : plan.skirt) p.fan = fan, p.props[PropId::Fan] = fan;
@@ -24,7 +24,8 @@ Status decide_cooling(LayerPlan& plan, Nest& nest) {
   auto one = [&](IslandPlan* ip, PathPlan& p) -> Status {
     nest.enter_path(ip, p);
     ctx::PropertyValues props = p.props;
-    if (Status s = nest.decide(Stage::Cooling, props); !s) return s;
+    TraceRef unused;
+    if (Status s = nest.decide(Stage::Cooling, props, p.trace ? p.trace : unused); !s) return s;
     p.fan = static_cast<float>(props[PropId::Fan]);
     p.props[PropId::Fan] = p.fan;
     return ok_status();

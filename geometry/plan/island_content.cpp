@@ -43,7 +43,8 @@ namespace {
 Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const std::vector<const EdgeGrid*>& borders,
                    double angle, double height_mm) {
   const bool solid = region.kind != PathKind::Infill;
-  auto props = nest.path_props(ip.props, region.kind, -1);
+  TraceRef log;
+  auto props = nest.path_props(ip.props, region.kind, -1, &log);
   if (!props) return props.error();
   double w = (*props)[PropId::Width];
   double s = toolpath::bead_spacing_mm(w, height_mm);
@@ -83,6 +84,7 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
     p.pts = std::move(fp.pts);
     p.border = std::move(fp.border);
     p.props = *props;
+    p.trace = nest.path_log(log);
     ip.paths.push_back(std::move(p));
   }
   return ok_status();
@@ -100,8 +102,10 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   toolpath::PerimeterSpec spec;
   spec.widths.clear();
   std::vector<PropertyValues> loop_props;
+  std::vector<TraceRef> loop_logs(static_cast<size_t>(std::max(count, 0)));
   for (int k = 0; k < count; ++k) {
-    auto p = nest.path_props(P, k == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter, k);
+    auto p = nest.path_props(P, k == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter, k,
+                             &loop_logs[static_cast<size_t>(k)]);
     if (!p) return p.error();
     spec.widths.push_back((*p)[PropId::Width]);
     loop_props.push_back(*p);
@@ -122,6 +126,7 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
     p.flow_scale = static_cast<float>(loop.flow_scale);
     p.pts = std::move(loop.ring);
     p.props = loop_props[static_cast<size_t>(loop.depth)];
+    p.trace = nest.path_log(loop_logs[static_cast<size_t>(loop.depth)]);
     ip.paths.push_back(std::move(p));
   }
   if (per.fill_region.empty()) return ok_status();
@@ -158,7 +163,8 @@ Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm) {
   const int loops = static_cast<int>(S.print_props[PropId::SkirtLoops]);
   if (loops <= 0 || S.skirt_around.empty()) return ok_status();
   nest.ctx().clear_from(schema::Level::Island);
-  auto props = nest.path_props(plan.props, PathKind::Skirt, -1);
+  TraceRef log;
+  auto props = nest.path_props(plan.props, PathKind::Skirt, -1, &log);
   if (!props) return props.error();
   const double w = (*props)[PropId::Width];
   const double s = toolpath::bead_spacing_mm(w, height_mm);
@@ -172,6 +178,7 @@ Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm) {
       p.width = static_cast<float>(w);
       p.pts = std::move(r);
       p.props = *props;
+      p.trace = nest.path_log(log);
       plan.skirt.push_back(std::move(p));
     }
   }

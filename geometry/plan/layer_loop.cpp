@@ -40,7 +40,8 @@ class LayerTask final : public IslandHost {
     measure_island(ip, S.shift, nb_, relations_);
     nest_.enter_island(ip);
     ip.props = plan_.props;
-    return nest_.decide(Stage::Island, ip.props);
+    ip.trace.reset();
+    return nest_.decide(Stage::Island, ip.props, ip.trace);
   }
   Status build_island(IslandPlan& ip) override {
     return plan::build_island(ip, nest_, nb_, plan_.height, regions_[static_cast<size_t>(ip.index)]);
@@ -71,7 +72,7 @@ Status LayerTask::layer_level() {
   plan_.area = S.table.get(L, FieldId::LayerArea);
   nest_.enter_layer(plan_, static_cast<int>(layer.islands.size()));
   plan_.props = S.print_props;
-  if (Status s = nest_.decide(Stage::Layer, plan_.props); !s) return s;
+  if (Status s = nest_.decide(Stage::Layer, plan_.props, plan_.trace); !s) return s;
 
   plan_.islands.resize(layer.islands.size());
   regions_.resize(layer.islands.size());
@@ -103,7 +104,9 @@ Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip
   if (Status s = redecide_island(ip); !s) return s;
   if (nest_.replaces(Level::Island)) {
     IslandReplace api(*this, ip);
+    if (ip.trace) nest_.ctx().set_trace(ip.trace.get());
     auto r = nest_.cascade().replacers()->replace(Level::Island, nest_.ctx(), api);
+    nest_.ctx().set_trace(nullptr);
     if (!r) return r.error();
     if (!api.status) return api.status;
     if (*r) {
@@ -135,7 +138,9 @@ Status LayerTask::path_level(IslandPlan* ip, PathPlan& p) {
   if (repl || nest_.executes() || nest_.per_piece()) nest_.bind_points(p);
   if (repl) {
     PathReplace api(nest_, p);
+    if (p.trace) nest_.ctx().set_trace(p.trace.get());
     auto r = nest_.cascade().replacers()->replace(Level::Path, nest_.ctx(), api);
+    nest_.ctx().set_trace(nullptr);
     if (!r) return r.error();
     if (*r) {
       p.replaced = true;
@@ -154,15 +159,18 @@ Status LayerTask::piece_level(PathPlan& p) {
   PropertyValues props = p.props;
   if (nest_.per_piece() && n > 0) {
     p.pieces.resize(n);
+    if (nest_.provenance()) p.piece_traces.assign(n, nullptr);
     for (size_t i = 0; i < n; ++i) {
       nest_.enter_piece(p, i);
       props = p.props;
-      if (Status s = nest_.decide(Stage::Piece, props); !s) return s;
+      TraceRef unused;
+      if (Status s = nest_.decide(Stage::Piece, props, nest_.provenance() ? p.piece_traces[i] : unused); !s) return s;
       p.pieces[i] = {static_cast<float>(props[PropId::Speed]), static_cast<float>(props[PropId::Flow])};
     }
     nest_.ctx().clear_from(Level::Piece);
   } else {
-    if (Status s = nest_.decide(Stage::Piece, props); !s) return s;
+    TraceRef unused;
+    if (Status s = nest_.decide(Stage::Piece, props, p.trace ? p.trace : unused); !s) return s;
     p.pieces.assign(1, {static_cast<float>(props[PropId::Speed]), static_cast<float>(props[PropId::Flow])});
   }
   p.props = props;

@@ -36,11 +36,21 @@ void Nest::enter_path_plan(schema::PathKind kind, int perimeter) {
   ctx_.set(FieldId::PathPerimeter, perimeter);
 }
 
+Status Nest::decide(schema::Stage stage, ctx::PropertyValues& props, TraceRef& log) {
+  if (!S.provenance) return decide(stage, props);
+  if (!log) log = std::make_shared<TraceLog>();
+  ctx_.set_trace(log.get());
+  Status s = decide(stage, props);
+  ctx_.set_trace(nullptr);
+  return s;
+}
+
 Result<ctx::PropertyValues> Nest::path_props(const ctx::PropertyValues& island_props, schema::PathKind kind,
-                                             int perimeter) {
+                                             int perimeter, TraceRef* log) {
   enter_path_plan(kind, perimeter);
   ctx::PropertyValues p = island_props;
-  if (Status s = decide(Stage::PathPlan, p); !s) return s.error();
+  TraceRef unused;
+  if (Status s = decide(Stage::PathPlan, p, log ? *log : unused); !s) return s.error();
   return p;
 }
 

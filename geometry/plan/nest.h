@@ -31,9 +31,18 @@ class Nest {
 
   // Decides `stage` for the element entered last; `props` holds the earlier stages' values.
   Status decide(schema::Stage stage, ctx::PropertyValues& props) { return C.decide(stage, ctx_, props); }
-  // The path-planning stage (width) of a path of `kind` in an island whose props are given.
+  // Decides as decide() does, recording into `log` when the run records provenance (a new log
+  // is made when `log` is null).
+  Status decide(schema::Stage stage, ctx::PropertyValues& props, TraceRef& log);
+  bool provenance() const { return S.provenance; }
+  // The path-planning stage (width) of a path of `kind` in an island whose props are given;
+  // recorded into `log` when given (and the run records provenance).
   Result<ctx::PropertyValues> path_props(const ctx::PropertyValues& island_props, schema::PathKind kind,
-                                         int perimeter);
+                                         int perimeter, TraceRef* log = nullptr);
+  // A path's own log, starting with what its path-planning decision recorded (null when not recording).
+  TraceRef path_log(const TraceRef& planned) const {
+    return S.provenance ? std::make_shared<TraceLog>(planned ? *planned : TraceLog{}) : nullptr;
+  }
 
   // `path.points`/`path.pieces` and `layer.islands` for rules that loop over them.
   void bind_points(const PathPlan& p) { path_view_.bind(ctx_, p, S.shift); }

@@ -19,6 +19,16 @@ class Comber;
 
 namespace tranche::plan {
 
+// What the cascade recorded while deciding one element (provenance, --export-preview): filled
+// only when the run records provenance (PrintSetup::provenance).
+struct TraceLog final : ctx::Trace {
+  std::vector<ctx::TraceStep> steps;
+  uint32_t replacer = UINT32_MAX;  // the replacer rule that generated the element's output
+  void step(const ctx::TraceStep& s) override { steps.push_back(s); }
+  void replaced(schema::Level, uint32_t rule) override { replacer = rule; }
+};
+using TraceRef = std::shared_ptr<TraceLog>;
+
 // One step of a replacer's output (`move to`, `gcode`, `comment`, `default`, `retract`).
 struct Op {
   enum class Kind : uint8_t { Extrude, Travel, Text, Default, Retract };
@@ -68,6 +78,10 @@ struct PathPlan {
   bool replaced = false;               // output is `ops` (which may include the default) instead of pts
   std::vector<Op> ops;
   ctx::PropertyValues props;  // every property as decided for this path (executors read them)
+  // Provenance (when recorded): the path's decisions (path planning, piece, cooling) and, when
+  // speed or flow vary along it, each piece's.
+  TraceRef trace;
+  std::vector<TraceRef> piece_traces;
 
   size_t piece_count() const { return pts.size() < 2 ? 0 : pts.size() - 1; }
   const PieceProps& piece(size_t i) const { return pieces.size() == 1 ? pieces[0] : pieces[i]; }
@@ -94,6 +108,7 @@ struct IslandPlan {
   double size_x = 0, size_y = 0, center_x = 0, center_y = 0;  // centre in bed coordinates
   int holes = 0;
   ctx::PropertyValues props;  // as decided at the island stage
+  TraceRef trace;             // provenance of the island stage (when recorded)
   std::vector<CellPlan> cells;
   std::vector<PathPlan> paths;  // print order; paths of a cell follow each other
   bool replaced = false;
@@ -104,6 +119,7 @@ struct LayerPlan {
   int index = 0;
   double z_bottom = 0, z = 0, height = 0, area = 0;  // mm, mm²
   ctx::PropertyValues props;                         // as decided at the layer stage
+  TraceRef trace;                                    // provenance of the layer stage and a layer-wide fan
   std::vector<PathPlan> skirt;                       // before the islands, on layer 0
   std::vector<IslandPlan> islands;                   // print order
   double time_s = 0;        // estimated, excluding the travel from the previous layer

@@ -51,6 +51,8 @@ struct PrintSetup {
   ctx::Context hook_ctx;
   ctx::PropertyValues hook_props;
   schema::Flavor flavor = schema::Flavor::Marlin;
+  // Record who decided what for every element (--export-preview); off, deciding records nothing.
+  bool provenance = false;
 };
 
 // Builds the setup of `layers` (resolved, bottom to top, not empty). `print_ctx` and

@@ -745,6 +745,24 @@ std::string RuleSet::rule_where(uint32_t r) const {
   return fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
 }
 
+std::string RuleSet::rule_label(uint32_t r) const {
+  if (r < program_.debug.rule_names.size() && !program_.debug.rule_names[r].empty()) {
+    std::string n = program_.debug.rule_names[r];
+    if (n.size() >= 2 && n.front() == '"' && n.back() == '"') n = n.substr(1, n.size() - 2);
+    return n;
+  }
+  return fmt::format("rule {}", r);
+}
+
+std::pair<std::string, uint32_t> RuleSet::chunk_source(uint32_t chunk) const {
+  const Debug& d = program_.debug;
+  if (chunk >= program_.chunks.size()) return {};
+  const uint32_t instr = program_.chunks[chunk].start;
+  if (instr >= d.instr_loc.size() || d.instr_loc[instr] >= d.locs.size()) return {};
+  const Loc& l = d.locs[d.instr_loc[instr]];
+  return {l.file < d.files.size() ? d.files[l.file] : std::string(), l.line};
+}
+
 Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {
   const auto& list = stage_props_[static_cast<size_t>(stage)];
   if (list.empty()) return ok_status();

@@ -26,6 +26,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "base/result.h"
@@ -68,6 +70,11 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   // "rule \"name\"" (or "rule 3" without debug information) and "file:line:col" ("" without).
   std::string rule_name(uint32_t rule) const;
   std::string rule_where(uint32_t rule) const;
+  // The rule's name without quotes ("bridges"), or its position ("the rule at f.rules:3").
+  std::string rule_label(uint32_t rule) const;
+  // The file (as given) and line where the code of `chunk` (a value, a hook's or a replacer's
+  // body) starts; line 0 without debug information.
+  std::pair<std::string, uint32_t> chunk_source(uint32_t chunk) const;
 
   // Every property's value check: a finite number within the physical range (angles are
   // brought into [0, 360)). Returns the value to store, or an explanation of what is wrong.
