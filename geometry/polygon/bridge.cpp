@@ -72,9 +72,19 @@ class EdgeIndex {
   std::vector<std::vector<int>> buckets_;
 };
 
-}  // namespace
+constexpr size_t kNearest = 6;  // cut candidates kept per hole vertex
 
-Result<BridgedPath> bridge_holes(const Polygon& shape) {
+// A cut candidate: vertices v and w, d2 apart (units²).
+struct Candidate {
+  exact::i128 d2;
+  int v, w;
+};
+
+// Orders candidates shortest first.
+bool shorter(const Candidate& a, const Candidate& b) { return a.d2 < b.d2; }
+
+// The rings of `shape`, the outer counter-clockwise, the holes clockwise.
+Rings oriented_rings(const Polygon& shape) {
   Rings rings;
   auto oriented = [](const Ring& r, bool ccw) {
     const exact::i128 a = exact::area2(r);
@@ -82,123 +92,190 @@ Result<BridgedPath> bridge_holes(const Polygon& shape) {
   };
   rings.push_back(oriented(shape.outer, true));
   for (const Ring& h : shape.holes) rings.push_back(oriented(h, false));
-  PlanarGraph g(rings);
+  return rings;
+}
 
-  // Rings sharing a point are already one path there.
-  const int nr = static_cast<int>(rings.size());
-  UnionFind joined(nr);
-  std::vector<int> ring_of(g.vertex_count(), -1);
+// Every edge of the rings, ring by ring.
+std::vector<std::pair<Point, Point>> ring_edges(const Rings& rings) {
   std::vector<std::pair<Point, Point>> edges;
+  for (const Ring& ring : rings) {
+    for (size_t i = 0; i < ring.size(); ++i) edges.emplace_back(ring[i], ring[(i + 1) % ring.size()]);
+  }
+  return edges;
+}
+
+// The box around the rings.
+BBox2 rings_box(const Rings& rings) {
   BBox2 box;
-  for (int r = 0; r < nr; ++r) {
-    for (const int v : g.ring_vertices()[r]) {
-      if (ring_of[v] >= 0) joined.unite(ring_of[v], r);
-      ring_of[v] = r;
-    }
-    for (size_t i = 0; i < rings[r].size(); ++i) {
-      edges.emplace_back(rings[r][i], rings[r][(i + 1) % rings[r].size()]);
-      box.add(rings[r][i]);
+  for (const Ring& ring : rings) {
+    for (const Point& p : ring) box.add(p);
+  }
+  return box;
+}
+
+// Joins the holes of one island: the rings' graph, which rings are already one path, and the
+// cuts chosen so far.
+class HoleJoiner {
+ public:
+  explicit HoleJoiner(const Polygon& shape)
+      : rings_(oriented_rings(shape)),
+        g_(rings_),
+        nr_(static_cast<int>(rings_.size())),
+        joined_(nr_),
+        ring_of_(g_.vertex_count(), -1),
+        edges_(ring_edges(rings_)),
+        index_(edges_, rings_box(rings_)) {}
+
+  // The single path, or an error when the holes cannot all be joined.
+  Result<BridgedPath> run();
+
+ private:
+  void join_touching();
+  bool admissible(int v, int w) const;
+  void consider(int v, int w, std::vector<Candidate>& best);
+  std::vector<Candidate> nearest_candidates();
+  void join_nearest();
+  Status join_remaining();
+  Result<BridgedPath> walk_path();
+
+  Rings rings_;
+  PlanarGraph g_;
+  const int nr_;
+  UnionFind joined_;  // ring groups already one path
+  std::vector<int> ring_of_;
+  const std::vector<std::pair<Point, Point>> edges_;
+  const EdgeIndex index_;
+  std::vector<std::pair<int, int>> cuts_;
+};
+
+// Rings sharing a point are already one path there.
+void HoleJoiner::join_touching() {
+  for (int r = 0; r < nr_; ++r) {
+    for (const int v : g_.ring_vertices()[r]) {
+      if (ring_of_[v] >= 0) joined_.unite(ring_of_[v], r);
+      ring_of_[v] = r;
     }
   }
-  const EdgeIndex index(edges, box);
-  std::vector<std::pair<int, int>> cuts;
+}
 
-  auto admissible = [&](int v, int w) {
-    const Point &p = g.point(v), &q = g.point(w);
-    if (!g.points_into_material(v, q) || !g.points_into_material(w, p)) return false;
-    bool ok = true;
-    index.near(p, q, [&](int i) {
-      if (!ok) return;
-      const auto& [a, b] = edges[i];
-      const exact::Contact k = exact::contact(p, q, a, b);
-      if (k == exact::Contact::None) return;
-      // Only an edge ending at the cut's own endpoints may touch it.
-      ok = k == exact::Contact::Touch && (a == p || a == q || b == p || b == q) &&
-           !exact::strictly_between(p, a, q) && !exact::strictly_between(p, b, q);
-    });
-    for (const auto& [c, d] : cuts) {
-      if (!ok) break;
-      const exact::Contact k = exact::contact(p, q, g.point(c), g.point(d));
-      ok =
-          k == exact::Contact::None || (k == exact::Contact::Touch && (c == v || c == w || d == v || d == w));
-    }
-    return ok;
-  };
+// Whether the cut v-w runs inside the material, crossing no edge and no cut already made.
+bool HoleJoiner::admissible(int v, int w) const {
+  const Point &p = g_.point(v), &q = g_.point(w);
+  if (!g_.points_into_material(v, q) || !g_.points_into_material(w, p)) return false;
+  bool ok = true;
+  index_.near(p, q, [&](int i) {
+    if (!ok) return;
+    const auto& [a, b] = edges_[i];
+    const exact::Contact k = exact::contact(p, q, a, b);
+    if (k == exact::Contact::None) return;
+    // Only an edge ending at the cut's own endpoints may touch it.
+    ok = k == exact::Contact::Touch && (a == p || a == q || b == p || b == q) &&
+         !exact::strictly_between(p, a, q) && !exact::strictly_between(p, b, q);
+  });
+  for (const auto& [c, d] : cuts_) {
+    if (!ok) break;
+    const exact::Contact k = exact::contact(p, q, g_.point(c), g_.point(d));
+    ok = k == exact::Contact::None || (k == exact::Contact::Touch && (c == v || c == w || d == v || d == w));
+  }
+  return ok;
+}
 
-  // Candidates: each hole vertex to its nearest vertices on other rings, shortest first.
-  struct Candidate {
-    exact::i128 d2;
-    int v, w;
-  };
-  std::vector<int> by_x(g.vertex_count());
+// Keeps the cut v-w among the kNearest shortest in `best` when w is on a ring not joined to v's.
+void HoleJoiner::consider(int v, int w, std::vector<Candidate>& best) {
+  if (joined_.find(ring_of_[w]) == joined_.find(ring_of_[v])) return;
+  best.push_back({dist2(g_.point(v), g_.point(w)), v, w});
+  std::sort(best.begin(), best.end(), shorter);
+  if (best.size() > kNearest) best.pop_back();
+}
+
+// Candidates: each hole vertex to its nearest vertices on other rings, shortest first.
+std::vector<Candidate> HoleJoiner::nearest_candidates() {
+  std::vector<int> by_x(g_.vertex_count());
   std::iota(by_x.begin(), by_x.end(), 0);
-  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return g.point(a).X < g.point(b).X; });
-  std::vector<int> pos(g.vertex_count());
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return g_.point(a).X < g_.point(b).X; });
+  std::vector<int> pos(g_.vertex_count());
   for (int i = 0; i < static_cast<int>(by_x.size()); ++i) pos[by_x[i]] = i;
-  constexpr size_t kNearest = 6;
   std::vector<Candidate> candidates;
-  for (int v = 0; v < g.vertex_count(); ++v) {
-    if (ring_of[v] == 0) continue;
+  for (int v = 0; v < g_.vertex_count(); ++v) {
+    if (ring_of_[v] == 0) continue;
     std::vector<Candidate> best;
-    auto consider = [&](int w) {
-      if (joined.find(ring_of[w]) == joined.find(ring_of[v])) return;
-      best.push_back({dist2(g.point(v), g.point(w)), v, w});
-      std::sort(best.begin(), best.end(), [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
-      if (best.size() > kNearest) best.pop_back();
-    };
     // Walk outwards in x until the x gap alone exceeds the kth distance.
     for (int dir : {-1, 1}) {
       for (int i = pos[v] + dir; i >= 0 && i < static_cast<int>(by_x.size()); i += dir) {
-        const exact::i128 dx = g.point(by_x[i]).X - g.point(v).X;
+        const exact::i128 dx = g_.point(by_x[i]).X - g_.point(v).X;
         if (best.size() == kNearest && dx * dx > best.back().d2) break;
-        consider(by_x[i]);
+        consider(v, by_x[i], best);
       }
     }
     candidates.insert(candidates.end(), best.begin(), best.end());
   }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
-  for (const Candidate& c : candidates) {
-    if (joined.find(ring_of[c.v]) == joined.find(ring_of[c.w]) || !admissible(c.v, c.w)) continue;
-    joined.unite(ring_of[c.v], ring_of[c.w]);
-    cuts.emplace_back(c.v, c.w);
+  std::sort(candidates.begin(), candidates.end(), shorter);
+  return candidates;
+}
+
+// The admissible near candidates, shortest first, that join two groups (a spanning tree).
+void HoleJoiner::join_nearest() {
+  for (const Candidate& c : nearest_candidates()) {
+    if (joined_.find(ring_of_[c.v]) == joined_.find(ring_of_[c.w]) || !admissible(c.v, c.w)) continue;
+    joined_.unite(ring_of_[c.v], ring_of_[c.w]);
+    cuts_.emplace_back(c.v, c.w);
   }
-  // Rare: every near candidate was blocked. Try all pairs from a separate group, shortest first.
-  for (int r = 1; r < nr; ++r) {
-    if (joined.find(r) == joined.find(0)) continue;
+}
+
+// Rare: every near candidate was blocked. Try all pairs from a separate group, shortest first.
+Status HoleJoiner::join_remaining() {
+  for (int r = 1; r < nr_; ++r) {
+    if (joined_.find(r) == joined_.find(0)) continue;
     std::vector<Candidate> all;
-    for (int v = 0; v < g.vertex_count(); ++v) {
-      if (joined.find(ring_of[v]) != joined.find(r)) continue;
-      for (int w = 0; w < g.vertex_count(); ++w) {
-        if (joined.find(ring_of[w]) != joined.find(r)) all.push_back({dist2(g.point(v), g.point(w)), v, w});
+    for (int v = 0; v < g_.vertex_count(); ++v) {
+      if (joined_.find(ring_of_[v]) != joined_.find(r)) continue;
+      for (int w = 0; w < g_.vertex_count(); ++w) {
+        if (joined_.find(ring_of_[w]) != joined_.find(r))
+          all.push_back({dist2(g_.point(v), g_.point(w)), v, w});
       }
     }
-    std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
+    std::sort(all.begin(), all.end(), shorter);
     bool done = false;
     for (const Candidate& c : all) {
       if (!admissible(c.v, c.w)) continue;
-      joined.unite(ring_of[c.v], ring_of[c.w]);
-      cuts.emplace_back(c.v, c.w);
+      joined_.unite(ring_of_[c.v], ring_of_[c.w]);
+      cuts_.emplace_back(c.v, c.w);
       done = true;
       break;
     }
     if (!done) return Error{"", "a hole cannot be joined to the outline (inconsistent island)"};
     r = 0;  // groups merged: look again from ring 1
   }
+  return ok_status();
+}
 
-  for (const auto& [v, w] : cuts) g.add_chord(v, w);
-  g.freeze();
+// The cuts added to the graph, and its one face walked as the path.
+Result<BridgedPath> HoleJoiner::walk_path() {
+  for (const auto& [v, w] : cuts_) g_.add_chord(v, w);
+  g_.freeze();
   std::vector<std::vector<int>> faces;
-  if (!g.faces(faces) || faces.size() != 1) {
+  if (!g_.faces(faces) || faces.size() != 1) {
     return Error{"", fmt::format("joining the holes left {} paths instead of one", faces.size())};
   }
   BridgedPath out;
   for (int h : faces[0]) {
-    out.ring.push_back(g.point(g.half_edge(h).from));
-    out.edges.push_back(g.half_edge(h).kind);
+    out.ring.push_back(g_.point(g_.half_edge(h).from));
+    out.edges.push_back(g_.half_edge(h).kind);
   }
-  out.cuts = static_cast<int>(cuts.size());
+  out.cuts = static_cast<int>(cuts_.size());
   return out;
 }
+
+// Touching rings, then the nearest admissible cuts, then any admissible cut, then the path.
+Result<BridgedPath> HoleJoiner::run() {
+  join_touching();
+  join_nearest();
+  if (Status st = join_remaining(); !st) return st.error();
+  return walk_path();
+}
+
+}  // namespace
+
+Result<BridgedPath> bridge_holes(const Polygon& shape) { return HoleJoiner(shape).run(); }
 
 }  // namespace tranche::geo

@@ -107,105 +107,135 @@ bool in_range(const Ring& r) {
   return true;
 }
 
-}  // namespace
-
-Result<std::vector<Cell>> decompose(const Polygon& shape, double angle_deg, DecomposeStats* stats) {
-  if (!std::isfinite(angle_deg)) return Error{"", "fill angle is not a number"};
-  if (!in_range(shape.outer)) return Error{"", "coordinates beyond ±2147 mm"};
-  for (const Ring& h : shape.holes) {
-    if (!in_range(h)) return Error{"", "coordinates beyond ±2147 mm"};
-  }
-  const FillDirection dir(angle_deg);
+// Rings with material on the left of every edge (outer counter-clockwise, holes clockwise),
+// rings of zero area dropped, and their total area (×2, units²).
+struct OrientedRings {
+  Rings rings;
   exact::i128 area = 0;
-  Rings rings;  // outer counter-clockwise, holes clockwise: material on the left of every edge
+};
+
+// The rings of `shape` oriented for the sweep.
+OrientedRings oriented_rings(const Polygon& shape) {
+  OrientedRings out;
   auto add = [&](const Ring& ring, bool outer) {
     const exact::i128 a = exact::area2(ring);
     if (a == 0) return;
-    rings.push_back((a > 0) == outer ? ring : Ring(ring.rbegin(), ring.rend()));
-    area += outer ? (a > 0 ? a : -a) : (a > 0 ? -a : a);
+    out.rings.push_back((a > 0) == outer ? ring : Ring(ring.rbegin(), ring.rend()));
+    out.area += outer ? (a > 0 ? a : -a) : (a > 0 ? -a : a);
   };
   add(shape.outer, true);
   for (const Ring& h : shape.holes) add(h, false);
-  std::vector<Cell> cells;
-  if (area <= 0) return cells;
-  PlanarGraph g(rings, &dir);
+  return out;
+}
 
-  auto cuts = sweep_cuts(g);
-  if (!cuts) return cuts.error();
-  std::vector<int> chords;
-  chords.reserve(cuts->size());
-  for (const auto& [u, v] : *cuts) chords.push_back(g.add_chord(u, v));
-  g.freeze();
+// Merges neighbours across a cut while their union stays monotone; repeats until stable, since a
+// merge elsewhere can make a union monotone that was not. A monotone cell's boundary changes
+// direction across the fill lines exactly twice (steps along a fill line aside); that count
+// for the union follows from the steps next to the cut, which rejects most merges without a
+// walk around the union. Unions passing it get the full exact test.
+class CellMerger {
+ public:
+  CellMerger(PlanarGraph& g, std::vector<std::vector<int>>& faces, const FillDirection& dir);
 
-  std::vector<std::vector<int>> faces;
-  if (!g.faces(faces)) return Error{"", "the cuts do not close into cells"};
-  std::vector<int> face_of(g.half_edge_count(), -1);
-  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
-    for (int h : faces[f]) face_of[h] = f;
-  }
-  if (stats) stats->sweep_cells = static_cast<int>(faces.size());
+  // Merges across the chords (half-edges of the cuts) until no merge is left.
+  void merge(const std::vector<int>& chords);
 
-  // Merge neighbours across a cut while their union stays monotone; repeat until stable, since a
-  // merge elsewhere can make a union monotone that was not. A monotone cell's boundary changes
-  // direction across the fill lines exactly twice (steps along a fill line aside); that count
-  // for the union follows from the steps next to the cut, which rejects most merges without a
-  // walk around the union. Unions passing it get the full exact test.
-  std::vector<int64_t> level(g.vertex_count());
-  for (int v = 0; v < g.vertex_count(); ++v) level[v] = dir.across(g.point(v));
-  auto step = [&](int h) {
-    const int64_t d = level[g.half_edge(h).to] - level[g.half_edge(h).from];
-    return (d > 0) - (d < 0);
-  };
-  std::vector<int> pos(g.half_edge_count(), -1);
-  auto index_face = [&](int f) {
-    for (int i = 0; i < static_cast<int>(faces[f].size()); ++i) pos[faces[f][i]] = i;
-  };
-  for (int f = 0; f < static_cast<int>(faces.size()); ++f) index_face(f);
-  // The path around face f from the end of half-edge h back to its start: first and last
+ private:
+  // The path around a face from the end of a half-edge back to its start: first and last
   // non-zero steps and the direction changes inside it (the face itself has 2 in all).
   struct Path {
     int first = 0, last = 0, changes = 0;
   };
-  auto path_without = [&](int f, int h) {
-    const auto& l = faces[f];
-    const int n = static_cast<int>(l.size()), at = pos[h];
-    Path p;
-    for (int k = 1; k < n && p.first == 0; ++k) p.first = step(l[(at + k) % n]);
-    for (int k = 1; k < n && p.last == 0; ++k) p.last = step(l[(at - k + n) % n]);
-    if (p.first == 0) return p;
-    const int s0 = step(h);
-    p.changes = 2 - (s0 != 0 ? (p.last != s0) + (s0 != p.first) : (p.last != p.first));
-    return p;
-  };
-  auto union_changes = [](const Path& a, const Path& b) {
-    if (a.first == 0) return b.first == 0 ? 0 : b.changes + (b.last != b.first);
-    if (b.first == 0) return a.changes + (a.last != a.first);
-    return a.changes + b.changes + (a.last != b.first) + (b.last != a.first);
-  };
+  int step(int h) const;
+  void index_face(int f);
+  Path path_without(int f, int h) const;
+  static int union_changes(const Path& a, const Path& b);
+  bool try_merge(int c);
+
+  PlanarGraph& g_;
+  std::vector<std::vector<int>>& faces_;
+  const FillDirection& dir_;
+  std::vector<int64_t> level_;  // per vertex: its position across the fill lines
+  std::vector<int> face_of_;    // per half-edge: its face
+  std::vector<int> pos_;        // per half-edge: its index in its face
+};
+
+// Indexes the faces: each half-edge's face and place in it, each vertex's level.
+CellMerger::CellMerger(PlanarGraph& g, std::vector<std::vector<int>>& faces, const FillDirection& dir)
+    : g_(g), faces_(faces), dir_(dir), face_of_(g.half_edge_count(), -1) {
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+    for (int h : faces_[f]) face_of_[h] = f;
+  }
+  level_.resize(g_.vertex_count());
+  for (int v = 0; v < g_.vertex_count(); ++v) level_[v] = dir_.across(g_.point(v));
+  pos_.assign(g_.half_edge_count(), -1);
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) index_face(f);
+}
+
+// The direction of half-edge h across the fill lines: -1, 0 (along a line) or 1.
+int CellMerger::step(int h) const {
+  const int64_t d = level_[g_.half_edge(h).to] - level_[g_.half_edge(h).from];
+  return (d > 0) - (d < 0);
+}
+
+// Records where each half-edge of face f lies in it.
+void CellMerger::index_face(int f) {
+  for (int i = 0; i < static_cast<int>(faces_[f].size()); ++i) pos_[faces_[f][i]] = i;
+}
+
+// The path around face f without half-edge h.
+CellMerger::Path CellMerger::path_without(int f, int h) const {
+  const auto& l = faces_[f];
+  const int n = static_cast<int>(l.size()), at = pos_[h];
+  Path p;
+  for (int k = 1; k < n && p.first == 0; ++k) p.first = step(l[(at + k) % n]);
+  for (int k = 1; k < n && p.last == 0; ++k) p.last = step(l[(at - k + n) % n]);
+  if (p.first == 0) return p;
+  const int s0 = step(h);
+  p.changes = 2 - (s0 != 0 ? (p.last != s0) + (s0 != p.first) : (p.last != p.first));
+  return p;
+}
+
+// The direction changes around the union of two faces joined along their cut.
+int CellMerger::union_changes(const Path& a, const Path& b) {
+  if (a.first == 0) return b.first == 0 ? 0 : b.changes + (b.last != b.first);
+  if (b.first == 0) return a.changes + (a.last != a.first);
+  return a.changes + b.changes + (a.last != b.first) + (b.last != a.first);
+}
+
+// Removes chord c when the union of the faces on its two sides is monotone; true when it did.
+bool CellMerger::try_merge(int c) {
+  if (g_.half_edge(c).removed) return false;
+  const int t = g_.half_edge(c).twin;
+  const int f1 = face_of_[c], f2 = face_of_[t];
+  if (f1 == f2) return false;
+  if (union_changes(path_without(f1, c), path_without(f2, t)) != 2) return false;
+  g_.set_removed(c, true);
+  const int start = faces_[f1][(pos_[c] + 1) % faces_[f1].size()];
+  std::vector<int> merged = g_.face(start);
+  if (merged.empty() || !is_monotone(face_ring(g_, merged), dir_)) {
+    g_.set_removed(c, false);
+    return false;
+  }
+  for (int h : merged) face_of_[h] = f1;
+  faces_[f1] = std::move(merged);
+  faces_[f2].clear();
+  index_face(f1);
+  return true;
+}
+
+// Passes over the chords until one merges nothing.
+void CellMerger::merge(const std::vector<int>& chords) {
   for (bool changed = true; changed;) {
     changed = false;
-    for (const int c : chords) {
-      if (g.half_edge(c).removed) continue;
-      const int t = g.half_edge(c).twin;
-      const int f1 = face_of[c], f2 = face_of[t];
-      if (f1 == f2) continue;
-      if (union_changes(path_without(f1, c), path_without(f2, t)) != 2) continue;
-      g.set_removed(c, true);
-      const int start = faces[f1][(pos[c] + 1) % faces[f1].size()];
-      std::vector<int> merged = g.face(start);
-      if (merged.empty() || !is_monotone(face_ring(g, merged), dir)) {
-        g.set_removed(c, false);
-        continue;
-      }
-      for (int h : merged) face_of[h] = f1;
-      faces[f1] = std::move(merged);
-      faces[f2].clear();
-      index_face(f1);
-      changed = true;
-    }
+    for (const int c : chords) changed |= try_merge(c);
   }
+}
 
-  exact::i128 total = 0;
+// The faces left as cells (empty faces were merged away); their total area (×2, units²) in `total`.
+std::vector<Cell> cells_of(const PlanarGraph& g, const std::vector<std::vector<int>>& faces, double angle_deg,
+                           exact::i128& total) {
+  std::vector<Cell> cells;
   for (const auto& f : faces) {
     if (f.empty()) continue;
     Cell cell;
@@ -216,9 +246,39 @@ Result<std::vector<Cell>> decompose(const Polygon& shape, double angle_deg, Deco
     total += exact::area2(cell.ring);
     cells.push_back(std::move(cell));
   }
+  return cells;
+}
+
+}  // namespace
+
+Result<std::vector<Cell>> decompose(const Polygon& shape, double angle_deg, DecomposeStats* stats) {
+  if (!std::isfinite(angle_deg)) return Error{"", "fill angle is not a number"};
+  if (!in_range(shape.outer)) return Error{"", "coordinates beyond ±2147 mm"};
+  for (const Ring& h : shape.holes) {
+    if (!in_range(h)) return Error{"", "coordinates beyond ±2147 mm"};
+  }
+  const FillDirection dir(angle_deg);
+  const OrientedRings oriented = oriented_rings(shape);
+  if (oriented.area <= 0) return std::vector<Cell>{};
+  PlanarGraph g(oriented.rings, &dir);
+
+  auto cuts = sweep_cuts(g);
+  if (!cuts) return cuts.error();
+  std::vector<int> chords;
+  chords.reserve(cuts->size());
+  for (const auto& [u, v] : *cuts) chords.push_back(g.add_chord(u, v));
+  g.freeze();
+
+  std::vector<std::vector<int>> faces;
+  if (!g.faces(faces)) return Error{"", "the cuts do not close into cells"};
+  if (stats) stats->sweep_cells = static_cast<int>(faces.size());
+  CellMerger(g, faces, dir).merge(chords);
+
+  exact::i128 total = 0;
+  std::vector<Cell> cells = cells_of(g, faces, angle_deg, total);
   // Sweep cells are monotone by construction and merged ones were tested when merged; the areas
   // are a cheap exact check that the cells still tile the island.
-  if (total != area) return Error{"", "cells do not tile the island"};
+  if (total != oriented.area) return Error{"", "cells do not tile the island"};
   if (stats) {
     stats->cells = static_cast<int>(cells.size());
     stats->cuts = 0;
@@ -250,8 +310,9 @@ Result<std::vector<Cell>> decompose_island(const Layer& layer, size_t island, do
   auto cells = decompose(layer.islands[island].shape, angle_deg, stats);
   if (!cells) {
     const Error& e = cells.error();
-    return Error{fmt::format("layer {} island {}{}{}", layer.index, island, e.where.empty() ? "" : " ", e.where),
-                 e.message};
+    return Error{
+        fmt::format("layer {} island {}{}{}", layer.index, island, e.where.empty() ? "" : " ", e.where),
+        e.message};
   }
   return cells;
 }

@@ -1,0 +1,203 @@
+#include "geometry/toolpath/zigzag_ring.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tranche::toolpath::zigzag_detail {
+namespace {
+
+using schema::Border;
+
+// A stretch of a ring as (start, length) in arc length from the ring's vertex 0, forward.
+struct Stretch {
+  double start, len;
+};
+
+// The best link found from one polyline's end to another's.
+struct Link {
+  double len = 1e300;
+  size_t poly = 0;
+  bool at_end = false;  // reaches the other polyline's last point (it is then reversed)
+  std::vector<UV> pts;
+  std::vector<Border> kinds;
+  Stretch st{0, 0};
+};
+
+// Turns a polyline round.
+void reverse(Poly& P) {
+  std::reverse(P.pts.begin(), P.pts.end());
+  std::reverse(P.border.begin(), P.border.end());
+  std::swap(P.first, P.last);
+}
+
+// Links along the border between polylines, and the stretches of the rings they cover.
+class BorderLinker {
+ public:
+  BorderLinker(const std::vector<Ring2>& rings, double limit) : rings_(rings), limit_(limit) {}
+
+  std::vector<Poly> chain(std::vector<Poly> polys);
+
+ private:
+  void measure_rings();
+  double param(uint32_t r, uint32_t edge, UV x) const;
+  double arc(uint32_t r, uint32_t edge, UV x) const;
+  Stretch stretch(uint32_t r, double sa, double sb, bool forward, bool whole) const;
+  bool overlaps(uint32_t r, const Stretch& x) const;
+  double walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
+              Stretch& st) const;
+  Link best_link(const Poly& cur, const std::vector<Poly>& polys, const std::vector<char>& used) const;
+
+  const std::vector<Ring2>& rings_;
+  const double limit_;                    // longest link, units
+  std::vector<std::vector<double>> cum_;  // per ring: arc length at each vertex, then the total
+  // Stretches of each ring that links lie on: a link may not run over another one. (It may run
+  // over the lines' own connectors, as PrusaSlicer's infill anchors do: along the island's border
+  // a solid link and connector are both laid at half flow.)
+  std::vector<std::vector<Stretch>> covered_;
+};
+
+// Arc length of each ring at each vertex, then its total; no stretch covered yet.
+void BorderLinker::measure_rings() {
+  cum_.assign(rings_.size(), {});
+  covered_.assign(rings_.size(), {});
+  for (size_t r = 0; r < rings_.size(); ++r) {
+    const auto& pts = rings_[r].pts;
+    cum_[r].assign(1, 0.0);
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const UV &p0 = pts[i], &p1 = pts[(i + 1) % pts.size()];
+      cum_[r].push_back(cum_[r].back() + std::hypot(p1.u - p0.u, p1.v - p0.v));
+    }
+  }
+}
+
+// Where x lies along the edge: 0 at its start, 1 at its end.
+double BorderLinker::param(uint32_t r, uint32_t edge, UV x) const {
+  const auto& pts = rings_[r].pts;
+  const UV &p = pts[edge], &q = pts[(edge + 1) % pts.size()];
+  double du = q.u - p.u, dv = q.v - p.v, l2 = du * du + dv * dv;
+  return l2 > 0 ? std::clamp(((x.u - p.u) * du + (x.v - p.v) * dv) / l2, 0.0, 1.0) : 0.0;
+}
+
+// Arc length of x on the edge from the ring's vertex 0.
+double BorderLinker::arc(uint32_t r, uint32_t edge, UV x) const {
+  return cum_[r][edge] + param(r, edge, x) * (cum_[r][edge + 1] - cum_[r][edge]);
+}
+
+// The stretch walked from a to b (forward: increasing vertex indices), `whole` when the walk
+// goes all the way round.
+Stretch BorderLinker::stretch(uint32_t r, double sa, double sb, bool forward, bool whole) const {
+  const double L = cum_[r].back();
+  double from = forward ? sa : sb, to = forward ? sb : sa;
+  double len = whole ? L : std::fmod(to - from + L, L);
+  return Stretch{from, len};
+}
+
+// Whether x runs over a stretch of ring r that a link already covers.
+bool BorderLinker::overlaps(uint32_t r, const Stretch& x) const {
+  const double L = cum_[r].back(), eps = 1e3;  // 1 µm
+  for (const Stretch& other : covered_[r]) {
+    if (std::fmod(other.start - x.start + L, L) < x.len - eps) return true;
+    if (std::fmod(x.start - other.start + L, L) < other.len - eps) return true;
+  }
+  return false;
+}
+
+// Links along the border: the walk from `from` to `b` on their common ring, the shorter way
+// round of those that run over no other link, if it is at most `limit` units long (points
+// after `from`, up to and including `b`; `st`: the stretch it covers). Returns its length.
+double BorderLinker::walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
+                          Stretch& st) const {
+  const double limit = limit_;
+  constexpr double kNo = 1e300;
+  if (from.ring != b.ring || std::hypot(b.p.u - from.p.u, b.p.v - from.p.v) > limit) return kNo;
+  const uint32_t r = from.ring;
+  const Ring2& ring = rings_[r];
+  const uint32_t n = static_cast<uint32_t>(ring.pts.size());
+  const double ta = param(r, from.edge, from.p), tb = param(r, b.edge, b.p);
+  const double sa = arc(r, from.edge, from.p), sb = arc(r, b.edge, b.p);
+  double best = kNo;
+  for (int dir : {1, -1}) {
+    bool direct = from.edge == b.edge && (dir > 0 ? ta <= tb : ta >= tb);
+    uint32_t count = direct ? 0 : steps(n, from.edge, b.edge, dir > 0);
+    if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
+    Stretch here = stretch(r, sa, sb, dir > 0, count == n);
+    if (here.len > limit || overlaps(r, here)) continue;
+    std::vector<UV> p;
+    std::vector<Border> k;
+    double len = 0;
+    UV at = from.p;
+    auto step = [&](UV to, uint32_t edge) {
+      len += std::hypot(to.u - at.u, to.v - at.v);
+      p.push_back(to);
+      k.push_back(border_of(ring.kinds[edge]));
+      at = to;
+    };
+    walk_ring(n, from.edge, count, dir > 0, [&](uint32_t v, uint32_t edge) {
+      step(ring.pts[v], edge);
+      return len <= limit;
+    });
+    step(b.p, b.edge);
+    if (len <= limit && len < best) best = len, pts = std::move(p), kinds = std::move(k), st = here;
+  }
+  return best;
+}
+
+// The shortest link from cur's last point to either end of an unused polyline.
+Link BorderLinker::best_link(const Poly& cur, const std::vector<Poly>& polys,
+                             const std::vector<char>& used) const {
+  Link best;
+  std::vector<UV> tp;
+  std::vector<Border> tk;
+  Stretch ts{0, 0};
+  for (size_t j = 0; j < polys.size(); ++j) {
+    if (used[j]) continue;
+    for (bool at_end : {false, true}) {
+      double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts);
+      if (l < best.len) best = {l, j, at_end, std::move(tp), std::move(tk), ts};
+    }
+  }
+  return best;
+}
+
+// Polylines joined end to start by links along the border, greedily from each unused one.
+std::vector<Poly> BorderLinker::chain(std::vector<Poly> polys) {
+  if (!(limit_ > 0 && polys.size() > 1)) return polys;
+  measure_rings();
+  std::vector<Poly> chains;
+  std::vector<char> used(polys.size(), 0);
+  for (size_t i = 0; i < polys.size(); ++i) {
+    if (used[i]) continue;
+    used[i] = 1;
+    Poly cur = std::move(polys[i]);
+    for (int flipped = 0; flipped < 2;) {
+      Link link = best_link(cur, polys, used);
+      if (link.len > limit_) {  // nothing from this end: try the other one, once
+        reverse(cur);
+        ++flipped;
+        continue;
+      }
+      used[link.poly] = 1;
+      covered_[cur.last.ring].push_back(link.st);
+      Poly& nx = polys[link.poly];
+      if (link.at_end) reverse(nx);
+      // The walk ends on nx's first point.
+      cur.pts.insert(cur.pts.end(), link.pts.begin(), link.pts.end());
+      cur.border.insert(cur.border.end(), link.kinds.begin(), link.kinds.end());
+      cur.pts.insert(cur.pts.end(), nx.pts.begin() + 1, nx.pts.end());
+      cur.border.insert(cur.border.end(), nx.border.begin(), nx.border.end());
+      cur.last = nx.last;
+      cur.area += nx.area;
+      cur.runs += nx.runs;
+    }
+    chains.push_back(std::move(cur));
+  }
+  return chains;
+}
+
+}  // namespace
+
+std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit) {
+  return BorderLinker(rings, limit).chain(std::move(polys));
+}
+
+}  // namespace tranche::toolpath::zigzag_detail
