@@ -97,7 +97,8 @@ bool starts_statement(size_t t) {
   }
 }
 
-// Tokens after which a `-` is binary (they end an operand).
+}  // namespace
+
 bool ends_operand(size_t t) {
   switch (t) {
     case L::IDENT:
@@ -116,6 +117,8 @@ bool ends_operand(size_t t) {
       return false;
   }
 }
+
+namespace {
 
 std::string char_help(std::string_view c) {
   if (c == "'") return "strings are written in double quotes: \"...\"";
