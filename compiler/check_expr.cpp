@@ -42,12 +42,16 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     case ExprKind::Bool:
       t = Type::boolean();
       break;
-    case ExprKind::String:
-      sink_
-          .error("E0206", e.span, "a string is not a value here",
-                 "strings are only used by `gcode` and `comment`")
-          .help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
+    case ExprKind::String: {
+      auto& d = sink_.error("E0206", e.span, "a string is not a value here",
+                            "strings are only used by `gcode` and `comment`");
+      d.help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
+      // `"infill"` where a name is meant: the name without its quotes.
+      if (e.text.size() > 2 && e.text.find_first_of(" \\{}") == std::string::npos && e.text[0] == '"' &&
+          e.text[1] != '"')
+        d.fix(e.span, e.text.substr(1, e.text.size() - 2));
       break;
+    }
     case ExprKind::Name:
       t = name(e, ctx, hint);
       break;
@@ -123,7 +127,7 @@ Type Checker::number(Expr& e) {
     } else if (auto best = suggest(u, all)) {
       // `mms`, `mmps`: a speed is more likely than a length.
       if (*best == "mm" && u.size() > 2 && u.find('s', 2) != std::string::npos) *best = "mm/s";
-      d.help(fmt::format("did you mean `{}`?", *best));
+      d.did_you_mean(e.unit_span, *best);
     }
     d.note("units: mm, mm2, mm3, mm/s, mm/s2, mm3/s, deg (or °), s, °C (or C), %");
     return Type::error();

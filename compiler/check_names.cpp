@@ -158,7 +158,7 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     std::vector<std::string> values(want.values.begin(), want.values.end());
     auto& d = sink_.error("E0104", e.span, fmt::format("unknown `{}` value `{}`", want.name, n),
                           fmt::format("not a `{}` value", want.name));
-    if (auto best = suggest(n, values)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(n, values)) d.did_you_mean(e.text_span, *best);
     d.note(fmt::format("`{}` values are {}", want.name, quoted_list(values, 12)));
     return Type::error();
   }
@@ -175,7 +175,7 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     for (const auto& l : *ctx.locals) candidates.push_back(l.name);
   auto& d = sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n),
                         ctx.locals ? "not a property, field or `let` name" : "not a property or field");
-  if (auto best = suggest(n, candidates)) d.help(fmt::format("did you mean `{}`?", *best));
+  if (auto best = suggest(n, candidates)) d.did_you_mean(e.text_span, *best);
   if (n == "s" || n == "mm")
     d.help("write units right after the number, without spaces around `/`: `20 mm/s`");
   return Type::error();
@@ -216,7 +216,7 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
             "E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
             fmt::format("not a field of {}", l->element == ast::Element::Piece ? "a piece" : "an island"));
         if (auto best = suggest(obj + "." + m, fields_of(prefix, obj + ".")))
-          d.help(fmt::format("did you mean `{}`?", *best));
+          d.did_you_mean(join(e.text_span, e.member_span), *best);
         return Type::error();
       }
       default:
@@ -244,7 +244,7 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
     auto& d = sink_.error("E0102", e.span, fmt::format("unknown field `{}`", full),
                           fmt::format("not a field of `{}`", obj));
     if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
-      d.help(fmt::format("did you mean `{}`?", *best));
+      d.did_you_mean(join(e.text_span, e.member_span), *best);
     } else if (schema::find_property(m)) {
       d.help(fmt::format("`{}` is a property: write `{}`", m, m));
     }
@@ -265,7 +265,7 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
     for (const auto& l : *ctx.locals) candidates.push_back(l.name);
   auto& d = sink_.error("E0101", e.text_span, fmt::format("unknown level `{}`", obj), "not a level");
   if (auto best = suggest(obj, candidates)) {
-    d.help(fmt::format("did you mean `{}.{}`?", *best, m));
+    d.did_you_mean(e.text_span, *best);
   } else if (schema::find_property(obj)) {
     d.help(fmt::format("`{}` is a property: it has no fields", obj));
   }
@@ -304,7 +304,7 @@ Type Checker::other_layer_field(Expr& e, const ast::Span& object_span) {
     auto& d = sink_.error("E0102", e.member_span, fmt::format("unknown field `{}`", shown),
                           "not a field of a layer");
     if (auto best = suggest(full, fields_of("layer.", "layer.")))
-      d.help(fmt::format("did you mean `{}`?", best->substr(6)));
+      d.did_you_mean(e.member_span, best->substr(6));
     return Type::error();
   }
   if (!other_layer_readable(*f)) {
@@ -333,7 +333,7 @@ Type Checker::call(Expr& e, ExprContext& ctx) {
     for (const auto& f : kFuncs) names.emplace_back(f.name);
     auto& d =
         sink_.error("E0105", e.text_span, fmt::format("unknown function `{}`", e.text), "not a function");
-    if (auto best = suggest(e.text, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(e.text, names)) d.did_you_mean(e.text_span, *best);
     d.note(fmt::format("functions are {}", quoted_list(names, 20)));
     return Type::error();
   }

@@ -228,7 +228,7 @@ void Checker::modifier(ast::Rule& r, Stmt& s) {
                                 "not a property")
                   : sink_.error("E0103", s.name_span, fmt::format("unknown property `{}`", s.name),
                                 "not a property");
-    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(s.name, names)) d.did_you_mean(s.name_span, *best);
     if (level_named(s.name) || schema::find_field(s.name))
       d.note("fields describe the print and cannot be set");
     expr(*s.value, ctx);
@@ -281,8 +281,10 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
                        fmt::format("`{}` needs {}, found {}", target, want.describe(),
                                    got.kind == Kind::Int ? std::string("a plain number") : got.describe()),
                        gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
-        if (gu.plain() && value.kind == ast::ExprKind::Number)
-          d.help(fmt::format("write `{} {}`", sources_.text(value.span), want.unit.name()));
+        if (gu.plain() && value.kind == ast::ExprKind::Number) {
+          std::string fixed = fmt::format("{} {}", sources_.text(value.span), want.unit.name());
+          d.help(fmt::format("write `{}`", fixed)).fix(value.span, fixed);
+        }
         else if (want.unit.plain())
           d.note(fmt::format("`{}` is a plain number (a ratio: `1` or `100%` is the full amount)", target));
         return false;
@@ -290,7 +292,8 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
       if (want.kind == Kind::Int && got.kind != Kind::Int) {
         fail("E0203", fmt::format("`{}` needs an integer, found {}", target, got.describe()),
              "not an integer")
-            .help("round it: `round(...)`, `floor(...)` or `ceil(...)`");
+            .help("round it: `round(...)`, `floor(...)` or `ceil(...)`")
+            .fix(value.span, fmt::format("round({})", sources_.text(value.span)));
         return false;
       }
       return true;
@@ -320,7 +323,7 @@ void Checker::hook(ast::Rule& r, Stmt& s, bool replace) {
   if (!level) {
     std::vector<std::string> names = {"print", "layer", "island", "cell", "path"};
     auto& d = sink_.error("E0101", s.name_span, fmt::format("unknown level `{}`", s.name), "not a level");
-    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(s.name, names)) d.did_you_mean(s.name_span, *best);
     d.note(replace ? "`replace` takes `path` or `island`"
                    : "hooks are on `print`, `layer`, `island`, `cell` or `path`");
     return;
@@ -600,7 +603,7 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
       auto& d = sink_.error("E0407", o.name_span, fmt::format("`move ... with` cannot set `{}`", o.name),
                             "not a move setting");
       if (auto best = suggest(o.name, {"speed", "flow", "width"}))
-        d.help(fmt::format("did you mean `{}`?", *best));
+        d.did_you_mean(o.name_span, *best);
       d.note("a move takes `speed`, `flow` and `width`");
       expr(*o.value, ctx);
       continue;
@@ -671,7 +674,8 @@ void Checker::unused_locals(std::vector<Local>& locals, size_t from) {
     if (l.used || l.name.starts_with('_') || !user_file(sources_, l.span)) continue;
     if (l.loop)
       sink_.warning("W209", l.span, fmt::format("loop variable `{}` is never used", l.name), "unused")
-          .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"));
+          .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"))
+          .fix(l.span, "_");
     else
       sink_.warning("W200", l.span, fmt::format("`let {}` is never used", l.name), "unused")
           .help("remove it, or start its name with `_`");

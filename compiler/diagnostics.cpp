@@ -183,6 +183,14 @@ std::string render_json(const ast::SourceMap& sources, const diag::Diagnostic& d
     if (i) out += ',';
     out += json_string(d.helps[i]);
   }
+  out += "],\"fixes\":[";
+  for (size_t i = 0; i < d.fixes.size(); ++i) {
+    const diag::Fix& f = d.fixes[i];
+    if (f.span.file >= sources.size()) continue;
+    out += fmt::format("{}{{\"file\":{},\"byte_start\":{},\"byte_end\":{},\"replacement\":{}}}", i ? "," : "",
+                       json_string(sources.file(f.span.file).path), f.span.offset, f.span.end(),
+                       json_string(f.replacement));
+  }
   return out + "]}";
 }
 

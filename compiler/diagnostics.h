@@ -4,7 +4,8 @@
 // `^^^` under the primary span and `---` under secondary ones, then `= note:` and `= help:`.
 // JSON: one object per diagnostic, on one line:
 //   {"code":"E0102","level":"error","message":"...","spans":[{"file":"a.rules","line":3,"col":18,
-//    "end_line":3,"end_col":28,"label":"...","primary":true}],"notes":[...],"helps":[...]}
+//    "end_line":3,"end_col":28,"label":"...","primary":true}],"notes":[...],"helps":[...],
+//    "fixes":[{"file":"a.rules","byte_start":17,"byte_end":27,"replacement":"layer.index"}]}
 // Lines and columns are 1-based; columns count characters; end_col is one past the last one.
 #pragma once
 

@@ -105,7 +105,7 @@ void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
         fmt::format("expected {} to {}", format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
     if (p.unit == schema::Unit::Ratio && v > 1 && v <= 100 && e->kind == ExprKind::Number &&
         e->unit_text.empty())
-      d.help(fmt::format("for a percentage, write `{:g}%`", v));
+      d.help(fmt::format("for a percentage, write `{:g}%`", v)).fix(e->span, fmt::format("{:g}%", v));
   }
 }
 

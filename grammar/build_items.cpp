@@ -102,7 +102,8 @@ ast::RulePtr AstBuilder::on(RulesParser::OnItemContext* ctx) {
     sink_
         .error("E0107", event_span, fmt::format("unknown event `{}.{}`", hook->name, event),
                "an event is `start` or `end`")
-        .help(fmt::format("did you mean `{}.{}`?", hook->name, guess));
+        .help(fmt::format("did you mean `{}.{}`?", hook->name, guess))
+        .fix(event_span, std::string(guess));
     return nullptr;
   }
   antlr4::Token* last = ctx->name(1)->getStop();

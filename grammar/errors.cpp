@@ -73,7 +73,7 @@ void ReportingStrategy::report(antlr4::Parser* parser, antlr4::Token* found,
   auto& d = sink_.error("E0004", input_.span(found), std::move(message), std::move(label));
   size_t type = found ? found->getType() : antlr4::Token::EOF;
   if (type == L::ASSIGN && expected.contains(static_cast<size_t>(L::EQ)))
-    d.help("to compare two values, write `==`");
+    d.help("to compare two values, write `==`").fix(input_.span(found), "==");
   if (type == antlr4::Token::EOF && !unclosed_.empty())
     d.label(unclosed_.back(),
             fmt::format("this `{}` is never closed", input_.sources().text(unclosed_.back())));

@@ -64,7 +64,17 @@ TEST_CASE("diagnostics: JSON, one object per diagnostic, with every span") {
         "{\"file\":\"test.rules\",\"line\":1,\"col\":15,\"end_line\":1,\"end_col\":20,\"byte_start\":14,"
         "\"byte_end\":19,\"label\":\"this is in `mm/s`\",\"primary\":false},"
         "{\"file\":\"test.rules\",\"line\":1,\"col\":23,\"end_line\":1,\"end_col\":34,\"byte_start\":22,"
-        "\"byte_end\":33,\"label\":\"this is in `mm2`\",\"primary\":false}],\"notes\":[],\"helps\":[]}");
+        "\"byte_end\":33,\"label\":\"this is in `mm2`\",\"primary\":false}],\"notes\":[],\"helps\":[],\"fixes\":[]}");
+}
+
+TEST_CASE("diagnostics: a did-you-mean carries the edit that applies it") {
+  One one("rule when layer.indx < 2 { flow = 1 }\n");
+  REQUIRE(one.d.fixes.size() == 1);
+  CHECK(one.c.program.sources.text(one.d.fixes[0].span) == "layer.indx");
+  CHECK(one.d.fixes[0].replacement == "layer.index");
+  CHECK(compiler::render_json(one.c.program.sources, one.d).find(
+            "\"fixes\":[{\"file\":\"test.rules\",\"byte_start\":10,\"byte_end\":20,\"replacement\":\"layer.index\"}]") !=
+        std::string::npos);
 }
 
 TEST_CASE("diagnostics: columns count characters, bytes count bytes") {
