@@ -31,6 +31,7 @@ constexpr const char* kUsage =
     "       rulec disasm FILE.bundle|FILE.rules...\n"
     "       rulec explain [options] FILE... --at \"layer.index=3, path.kind=outer_perimeter\"\n"
     "       rulec fmt [--check] FILE...|-\n"
+    "       rulec lsp [--stdlib DIR]\n"
     "\n"
     "check    checks .rules files: syntax, names, types and units, stages, lints\n"
     "build    checks, then compiles the files (in cascade order) into one bundle for\n"
@@ -39,6 +40,8 @@ constexpr const char* kUsage =
     "explain  for one context, says which rule decides each slot and why later rules do not match\n"
     "fmt      rewrites .rules files (and the ```rules blocks of .md files) in the canonical layout;\n"
     "         `-` formats standard input to standard output\n"
+    "lsp      a Language Server Protocol server on standard input and output, for editors\n"
+    "         (editors/README.md)\n"
     "\n"
     "Exit status: 0 no errors (warnings allowed), 1 errors, 2 usage error.\n"
     "\n"
@@ -336,6 +339,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (cmd == "fmt") return tranche::apps::fmt_command(argc, argv);
+  if (cmd == "lsp") return tranche::apps::lsp_command(argc, argv);
   if (cmd != "check" && cmd != "build" && cmd != "disasm" && cmd != "explain")
     return usage_error(std::string("unknown command `").append(cmd).append("`"));
   Args a;

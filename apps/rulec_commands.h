@@ -5,5 +5,7 @@ namespace tranche::apps {
 
 // `rulec fmt [--check] FILE...|-`; returns the exit status.
 int fmt_command(int argc, char** argv);
+// `rulec lsp [--stdlib DIR]`: the language server on standard input and output.
+int lsp_command(int argc, char** argv);
 
 }  // namespace tranche::apps

@@ -59,7 +59,8 @@ class Loader {
   void expand(uint32_t file, const fs::path& key) {
     loaded_[key.string()] = file;
     stack_.push_back(file);
-    ast::File parsed = grammar::parse_file(program_.sources, file, sink_, options_.parse);
+    ast::File parsed = options_.parser ? options_.parser(program_.sources, file, sink_)
+                                       : grammar::parse_file(program_.sources, file, sink_, options_.parse);
     std::map<std::string, ast::Span> used_here;
     for (auto& item : parsed.items) {
       if (item.rule) {

@@ -259,6 +259,18 @@ struct Program {
   bool checked = false;  // true once the checker ran without errors
 };
 
+// Where a copied node lands: spans of the copy are in `file`, `offset` bytes and `line` lines
+// further on (a part of a file parsed on its own, put back in place; columns do not change).
+struct Relocation {
+  uint32_t file = 0;
+  uint32_t offset = 0;
+  uint32_t line = 0;
+  Span operator()(const Span& s) const;
+};
+
+// A deep copy of the syntax of an item (the checked fields are left unset), relocated.
+Item clone(const Item& item, const Relocation& to);
+
 // An indented tree of the checked AST, one node per line, for tests and `rulec check --dump-ast`.
 std::string dump(const Program& program);
 

@@ -20,6 +20,7 @@ COMPONENTS = [
     ("grammar/ast", ["runtime/schema", "base"]),
     ("grammar", ["grammar/ast"]),
     ("compiler", ["grammar", "runtime/vm"]),
+    ("lsp", ["compiler"]),
     ("geometry/core", ["base"]),
     ("geometry/mesh", ["geometry/core"]),
     ("geometry/slice", ["geometry/mesh"]),
@@ -29,9 +30,9 @@ COMPONENTS = [
     ("geometry/toolpath", ["geometry/polygon", "runtime/context"]),
     ("geometry/gcode", ["geometry/toolpath"]),
     ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
-    ("apps", ["geometry/pipeline", "compiler"]),
+    ("apps", ["geometry/pipeline", "compiler", "lsp"]),
 ]
-CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
+CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "lsp", "geometry", "apps")
 
 
 def component(path):
