@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <set>
 
 #include <algorithm>
@@ -115,13 +116,12 @@ std::string render_text(const ast::SourceMap& sources, const diag::Diagnostic& d
       }
     }
   }
-  if (!d.notes.empty() || !d.helps.empty()) {
-    if (!by_line.empty()) out += fmt::format("{} {}\n", pad, st.paint("|", kBlue));
-    for (const auto& n : d.notes)
-      out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("note", kBold) + ": " + n);
-    for (const auto& h : d.helps)
-      out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("help", kBold) + ": " + h);
-  }
+  if (!by_line.empty()) out += fmt::format("{} {}\n", pad, st.paint("|", kBlue));
+  for (const auto& n : d.notes)
+    out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("note", kBold) + ": " + n);
+  for (const auto& h : d.helps)
+    out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("help", kBold) + ": " + h);
+  out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("docs", kBold) + ": " + docs_link(d.code));
   return out;
 }
 
@@ -205,7 +205,7 @@ std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::
   bool first = true;
   for (const auto& c : codes) {
     out += fmt::format("{}{{\"id\":{},\"helpUri\":{}}}", first ? "" : ",", json_string(c),
-                       json_string("docs/diagnostics.md#" + c));
+                       json_string(docs_link(c)));
     first = false;
   }
   out += "]}},\"results\":[";
@@ -242,6 +242,12 @@ std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::
     out += "}";
   }
   return out + "]}]}\n";
+}
+
+std::string docs_link(std::string_view code) {
+  std::string anchor(code);
+  for (char& c : anchor) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return "docs/diagnostics.md#" + anchor;
 }
 
 std::string summary(size_t errors, size_t warnings) {

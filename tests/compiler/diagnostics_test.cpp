@@ -29,7 +29,8 @@ TEST_CASE("diagnostics: the text form, rustc style") {
         "1 | rule \"slow\" when layer.indx < 2 {\n"
         "  |                  ^^^^^^^^^^ not a field of `layer`\n"
         "  |\n"
-        "  = help: did you mean `layer.index`?\n");
+        "  = help: did you mean `layer.index`?\n"
+        "  = docs: docs/diagnostics.md#e0102\n");
 }
 
 TEST_CASE("diagnostics: secondary labels, notes, tabs and wide line numbers") {
@@ -45,7 +46,9 @@ TEST_CASE("diagnostics: secondary labels, notes, tabs and wide line numbers") {
         "10 | rule \"x\" when    speed > island.area { flow = 1 }\n"
         "   |                        ^ the units differ\n"
         "   |                  ----- this is in `mm/s`\n"
-        "   |                          ----------- this is in `mm2`\n");
+        "   |                          ----------- this is in `mm2`\n"
+        "   |\n"
+        "   = docs: docs/diagnostics.md#e0200\n");
 }
 
 TEST_CASE("diagnostics: colour only when asked") {
@@ -112,7 +115,7 @@ TEST_CASE("diagnostics: SARIF 2.1.0, one result per diagnostic with its primary 
   REQUIRE(c.sink.all().size() == 2);
   std::string s = compiler::render_sarif(c.program.sources, c.sink.all());
   CHECK(s.find("\"version\":\"2.1.0\"") != std::string::npos);
-  CHECK(s.find("{\"id\":\"E0102\",\"helpUri\":\"docs/diagnostics.md#E0102\"}") != std::string::npos);
+  CHECK(s.find("{\"id\":\"E0102\",\"helpUri\":\"docs/diagnostics.md#e0102\"}") != std::string::npos);
   CHECK(s.find("\"ruleId\":\"E0103\",\"level\":\"error\"") != std::string::npos);
   CHECK(s.find("\"region\":{\"startLine\":1,\"startColumn\":15,\"endLine\":1,\"endColumn\":25}") != std::string::npos);
   CHECK(s.find("help: did you mean `speed`?") != std::string::npos);
