@@ -158,7 +158,10 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     std::vector<std::string> values(want.values.begin(), want.values.end());
     auto& d = sink_.error("E0104", e.span, fmt::format("unknown `{}` value `{}`", want.name, n),
                           fmt::format("not a `{}` value", want.name));
-    if (auto best = suggest(n, values)) d.did_you_mean(e.text_span, *best);
+    if (auto same = enum_synonym(want.name, n))
+      d.help(fmt::format("what other slicers call `{}` is `{}` here", n, *same)).fix(e.text_span, std::string(*same));
+    else if (auto best = suggest(n, values))
+      d.did_you_mean(e.text_span, *best);
     d.note(fmt::format("`{}` values are {}", want.name, quoted_list(values, 12)));
     return Type::error();
   }
@@ -166,6 +169,13 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     sink_.error("E0100", e.span, fmt::format("`{}` is not a value", n), "a level, not a value")
         .help(n == "layers" ? std::string("read a field of one layer: `layers[layer.index - 1].area`")
                             : fmt::format("read one of its fields, like `{}.{}`", n, example_field(n)));
+    return Type::error();
+  }
+  if (auto theirs = foreign_value(n)) {
+    sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n), "not a name of the rule language")
+        .help(fmt::format("`{}` is {} name for it: here it is `{}`", n,
+                          theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours))
+        .fix(e.text_span, std::string(theirs->ours));
     return Type::error();
   }
   std::vector<std::string> candidates = property_names();
@@ -243,7 +253,10 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
     }
     auto& d = sink_.error("E0102", e.span, fmt::format("unknown field `{}`", full),
                           fmt::format("not a field of `{}`", obj));
-    if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
+    if (auto same = field_synonym(obj, m)) {
+      d.did_you_mean(join(e.text_span, e.member_span), std::string(*same));
+      if (*same == "path.kind") d.note("what other slicers call a path's feature type or extrusion role is `path.kind`");
+    } else if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
       d.did_you_mean(join(e.text_span, e.member_span), *best);
     } else if (schema::find_property(m)) {
       d.help(fmt::format("`{}` is a property: write `{}`", m, m));

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <regex>
 
 #include "compiler/check.h"
 #include "compiler/checker.h"
@@ -228,7 +229,12 @@ void Checker::modifier(ast::Rule& r, Stmt& s) {
                                 "not a property")
                   : sink_.error("E0103", s.name_span, fmt::format("unknown property `{}`", s.name),
                                 "not a property");
-    if (auto best = suggest(s.name, names)) d.did_you_mean(s.name_span, *best);
+    if (auto theirs = foreign_property(s.name))
+      d.help(fmt::format("`{}` is {} name for it: here it is `{}`", s.name,
+                         theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours))
+          .fix(s.name_span, std::string(theirs->ours));
+    else if (auto best = suggest(s.name, names))
+      d.did_you_mean(s.name_span, *best);
     if (level_named(s.name) || schema::find_field(s.name))
       d.note("fields describe the print and cannot be set");
     expr(*s.value, ctx);
@@ -236,8 +242,11 @@ void Checker::modifier(ast::Rule& r, Stmt& s) {
   }
   const auto& info = schema::property(*p);
   s.prop = *p;
+  if (info.type == schema::Type::Number) expected_unit_ = ast::Unit::from_schema(info.unit);
   expr(*s.value, ctx, info.enum_type);
+  expected_unit_.reset();
   bool ok = assignable(*s.value, Type::of(info.type, info.unit, info.enum_type), s.name, s.name_span);
+  if (ok && !r.from_set) range(*s.value, *p);
   if (ok && r.from_set && s.value->constant &&
       (*s.value->constant < info.min || *s.value->constant > info.max)) {
     auto& d = sink_.error(
@@ -281,7 +290,16 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
                        fmt::format("`{}` needs {}, found {}", target, want.describe(),
                                    got.kind == Kind::Int ? std::string("a plain number") : got.describe()),
                        gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
-        if (gu.plain() && value.kind == ast::ExprKind::Number) {
+        if (gu.plain() && value.kind == ast::ExprKind::Number && value.unit_text == "%") {
+          // `width = 110%`: a fraction of what? Of the value the earlier rules give it.
+          if (schema::find_property(target)) {
+            std::string fixed = fmt::format("{} * {}", target, sources_.text(value.span));
+            d.help(fmt::format("`%` is a fraction of something: `{} = {}` scales the value the earlier rules give "
+                               "it; or write a value in `{}`",
+                               target, fixed, want.unit.name()))
+                .fix(value.span, fixed);
+          }
+        } else if (gu.plain() && value.kind == ast::ExprKind::Number) {
           std::string fixed = fmt::format("{} {}", sources_.text(value.span), want.unit.name());
           d.help(fmt::format("write `{}`", fixed)).fix(value.span, fixed);
         }
@@ -316,6 +334,46 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
       return false;
   }
   return false;
+}
+
+namespace {
+// The constant values an expression can take: itself, or both branches of an `if`.
+void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
+  if (e.kind == ast::ExprKind::If && !e.args[0]->constant) {
+    constant_leaves(*e.args[1], out);
+    constant_leaves(*e.args[2], out);
+  } else if (e.constant) {
+    out.push_back(&e);
+  }
+}
+}  // namespace
+
+// E0212: a constant outside the property's physical range stops the slice whenever it is set.
+// (Angles are brought into [0°, 360°) instead: W206 warns about them.)
+void Checker::range(const Expr& value, schema::PropId prop) {
+  const auto& p = schema::property(prop);
+  if ((p.type != schema::Type::Number && p.type != schema::Type::Int) || p.unit == schema::Unit::Deg) return;
+  std::vector<const Expr*> leaves;
+  constant_leaves(value, leaves);
+  for (const Expr* e : leaves) {
+    double v = *e->constant;
+    if (v >= p.min && v <= p.max) continue;
+    auto& d = sink_.error(
+        "E0212", e->span,
+        fmt::format("`{}` = {} is outside its physical range", p.name, format_quantity(v, p.unit)),
+        fmt::format("expected {} to {}", format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
+    d.note("a value outside the range stops the slice wherever the rule applies");
+    bool plain_literal = e->kind == ast::ExprKind::Number && e->unit_text.empty();
+    if (p.id == schema::PropId::Fan && v > 100 && v <= 255 && plain_literal) {
+      std::string fixed = fmt::format("{:.0f}%", v / 255 * 100);
+      d.help(fmt::format("`fan` is a fraction of full speed, not M106's 0-255: {:g} is `{}`", v, fixed)).fix(e->span, fixed);
+    } else if (p.unit == schema::Unit::Ratio && v > 1 && v <= 100 && plain_literal) {
+      d.help(fmt::format("for a percentage, write `{:g}%`", v)).fix(e->span, fmt::format("{:g}%", v));
+    } else {
+      d.help(fmt::format("give `{}` a value from {} to {}, or `clamp(...)` a computed one", p.name,
+                         format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
+    }
+  }
 }
 
 void Checker::hook(ast::Rule& r, Stmt& s, bool replace) {
@@ -612,12 +670,56 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
       sink_.error("E0407", o.name_span, fmt::format("`{}` is given twice", o.name), "given again");
     o.prop = *p;
     const auto& info = schema::property(*p);
+    expected_unit_ = ast::Unit::from_schema(info.unit);
     expr(*o.value, ctx);
-    assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span);
+    expected_unit_.reset();
+    if (assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span))
+      range(*o.value, *p);
+  }
+}
+
+// E0008: placeholders of other slicers in a template's text would be printed as they are.
+void Checker::placeholders(const ast::Template& t) {
+  static const std::regex foreign(R"(\[([A-Za-z_][A-Za-z0-9_]*)\]|%([A-Za-z_][A-Za-z0-9_]*)%|\{\{\s*([A-Za-z_][A-Za-z0-9_.]*)\s*\}\})");
+  for (size_t k = 0; k < t.parts.size(); ++k) {
+    const ast::TemplatePart& p = t.parts[k];
+    if (p.expr) continue;
+    std::string raw(sources_.text(p.span));
+    // `${layer.z}`: the `$` of a shell or JavaScript template is printed.
+    if (!raw.empty() && raw.back() == '$' && k + 1 < t.parts.size() && t.parts[k + 1].expr) {
+      ast::Span dollar = sources_.span(p.span.file, p.span.end() - 1, p.span.end());
+      sink_.error("E0008", dollar, "`${...}`: the `$` would be printed before the value", "printed as it is")
+          .help("a template's values are written `{...}` without `$`")
+          .fix(dollar, "");
+    }
+    for (std::sregex_iterator it(raw.begin(), raw.end(), foreign), end; it != end; ++it) {
+      const std::smatch& m = *it;
+      int group = m[1].matched ? 1 : m[2].matched ? 2 : 3;
+      std::string name = m[group];
+      std::string ours;
+      std::string_view whose = group == 3 ? "Jinja's (Klipper's)" : group == 1 ? "PrusaSlicer's" : "another slicer's";
+      if (auto f = foreign_value(name)) {
+        ours = std::string(f->ours);
+        if (group == 1 && !f->whose.empty()) whose = f->whose;
+      } else if (schema::find_property(name) || schema::find_field(name) || params_.count(name)) {
+        ours = name;
+      }
+      if (ours.empty()) continue;  // `[done]`, `{{x}}`: text the user means
+      uint32_t at = p.span.offset + static_cast<uint32_t>(m.position(0));
+      ast::Span span = sources_.span(p.span.file, at, at + static_cast<uint32_t>(m.length(0)));
+      std::string fixed = "{" + ours + "}";
+      sink_
+          .error("E0008", span,
+                 fmt::format("`{}` is {} placeholder syntax: it would be printed as it is", m.str(0), whose),
+                 "printed as it is")
+          .help(fmt::format("a template prints a value written in braces: `{}`", fixed))
+          .fix(span, fixed);
+    }
   }
 }
 
 void Checker::text(ast::Template& t, ExprContext& ctx) {
+  placeholders(t);
   for (auto& p : t.parts) {
     if (!p.expr) continue;
     Type type = expr(*p.expr, ctx);

@@ -93,6 +93,7 @@ class Checker {
             bool& emitted);
   void move(ast::Stmt& s, ExprContext& ctx);
   void text(ast::Template& t, ExprContext& ctx);
+  void placeholders(const ast::Template& t);
   bool declare(std::vector<Local>& locals, Local local, ast::Stmt& action);
   void unused_locals(std::vector<Local>& locals, size_t from);
   void conjuncts(ast::Rule& r);
@@ -115,7 +116,9 @@ class Checker {
   ast::Program& program_;
   const ast::SourceMap& sources_;
   diag::Sink& sink_;
+  void range(const ast::Expr& value, schema::PropId prop);
   ast::Rule* rule_ = nullptr;           // the rule being checked
+  std::optional<ast::Unit> expected_unit_;  // of the value being checked, for unit suggestions
   std::set<schema::PropId> rule_sets_;  // properties the current rule sets
   std::set<uint32_t> stage_reported_;   // offsets of reads already reported in this rule
   std::vector<Dependency> deps_;

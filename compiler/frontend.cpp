@@ -224,7 +224,11 @@ bool add_set(ast::Program& program, std::string_view key, std::string_view value
     auto& d = sink.error("E0103", key_span,
                          fmt::format("unknown property{} `{}` in `--set`", any_params ? " or param" : "", key),
                          any_params ? "not a property or a param of these rules" : "not a property");
-    if (auto best = suggest(key, names)) d.help(fmt::format("did you mean `--set {}={}`?", *best, value));
+    if (auto theirs = foreign_property(key))
+      d.help(fmt::format("`{}` is {} name for it: write `--set {}={}`", key,
+                         theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours, value));
+    else if (auto best = suggest(key, names))
+      d.help(fmt::format("did you mean `--set {}={}`?", *best, value));
     return false;
   }
   if (value.find_first_not_of(" \t") == std::string_view::npos) {

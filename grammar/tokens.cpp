@@ -129,7 +129,10 @@ std::string char_help(std::string_view c) {
   if (c == "≥") return "write `>=`";
   if (c == "≠") return "write `!=`";
   if (c == "×") return "write `*`";
-  if (c == ":") return "a `:` is only used for the format of a template value: `{layer.z:.2}`";
+  if (c == ":")
+    return "set a property with `=` (`speed = 20 mm/s`); a `:` is only used for the format of a template value: "
+           "`{layer.z:.2}`";
+  if (c == "$") return "values are written as they are, without `$`: `layer.z`, and `{layer.z}` in a template";
   if (c == "?") return "a choice is written `if C then A else B`";
   if (c == "^") return "there is no power operator: write `x * x`";
   return {};
