@@ -178,6 +178,12 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
         .fix(e.text_span, std::string(theirs->ours));
     return Type::error();
   }
+  if (n == "True" || n == "False" || n == "TRUE" || n == "FALSE") {
+    std::string lower = n == "True" || n == "TRUE" ? "true" : "false";
+    sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n), "not a name of the rule language")
+        .did_you_mean(e.text_span, lower);
+    return Type::error();
+  }
   std::vector<std::string> candidates = property_names();
   for (const auto& f : schema::fields()) candidates.emplace_back(f.name);
   for (const auto& [name, value] : params_) candidates.push_back(name);

@@ -137,8 +137,13 @@ void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
                                                       : known_at(known);
       if (auto* d =
               report("E0300", fmt::format("{}, so `{}` ({}) cannot be read here", limit.what, shown, when),
-                     "not known yet"))
+                     "not known yet")) {
         if (auto s = substitute(e.field, *limit.stage)) d->help(*s);
+        if (d->helps.empty())
+          d->help(fmt::format("read what is {} (the fields of `{}` and the levels above it), or set a property "
+                              "decided later",
+                              known_at(*limit.stage), schema::level_name(schema::stage_level(*limit.stage))));
+      }
     } else if (limit.level && level > *limit.level) {
       std::string of = e.ref == RefKind::OtherLayer ? "another layer"
                                                     : fmt::format("a {} field", schema::level_name(level));

@@ -72,7 +72,7 @@ void ReportingStrategy::report(antlr4::Parser* parser, antlr4::Token* found,
   std::string label = want.empty() ? "not expected here" : fmt::format("expected {}", want);
   auto& d = sink_.error("E0004", input_.span(found), std::move(message), std::move(label));
   size_t type = found ? found->getType() : antlr4::Token::EOF;
-  if (type == L::ASSIGN && expected.contains(static_cast<size_t>(L::EQ)))
+  if (type == L::ASSIGN && !expected.contains(static_cast<size_t>(L::ASSIGN)))
     d.help("to compare two values, write `==`").fix(input_.span(found), "==");
   if (type == antlr4::Token::EOF && !unclosed_.empty())
     d.label(unclosed_.back(),
@@ -93,6 +93,8 @@ void ReportingStrategy::report(antlr4::Parser* parser, antlr4::Token* found,
   } else if (type == L::IDENT && expected.contains(static_cast<size_t>(L::LBRACE)) &&
              !expected.contains(static_cast<size_t>(L::IDENT))) {
     d.help("a rule's actions go inside `{ ... }`");
+  } else if (type == L::LBRACE && expected.contains(static_cast<size_t>(L::DOT))) {
+    d.help("an event is `LEVEL.start` or `LEVEL.end`: `on layer.start { ... }`");
   } else if (type == L::PERCENT) {
     d.help("the remainder of a division is written `mod`: `layer.index mod 2 == 0`; `%` follows a number: `50%`")
         .fix(input_.span(found), "mod");
