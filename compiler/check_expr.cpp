@@ -94,6 +94,9 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     case ExprKind::If:
       t = if_expr(e, ctx, hint);
       break;
+    case ExprKind::Quantifier:
+      t = quantifier(e, ctx);
+      break;
   }
   if (t.kind == Kind::Number && !t.unit.in_range()) {
     sink_.error("E0208", e.span, fmt::format("the unit of this value, `{}`, is out of range", t.unit.name()),

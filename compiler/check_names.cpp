@@ -105,6 +105,13 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
       return Type::enumeration(hint);
     }
   }
+  for (size_t k = bound_.size(); k-- > 0;) {
+    if (bound_[k].name != n) continue;
+    bound_[k].used = true;
+    e.ref = RefKind::Bound;
+    e.local = static_cast<int>(k);
+    return Type::integer();
+  }
   if (Local* l = find_local(ctx, n)) {
     l->used = true;
     if (l->element != ast::Element::None && l->element != ast::Element::Int) {

@@ -114,7 +114,7 @@ Limit Checker::limit_for(const ast::Slot& slot, const ast::Rule& r) const {
 void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
   for (const auto& a : e.args) require(*a, limit, r);
   if (e.ref == RefKind::None || e.ref == RefKind::Local || e.ref == RefKind::ElementField ||
-      e.ref == RefKind::EnumValue)
+      e.ref == RefKind::EnumValue || e.ref == RefKind::Bound)
     return;
   std::string shown(sources_.text(e.span));
   auto report = [&](const char* code, std::string message, std::string label) -> diag::Diagnostic* {

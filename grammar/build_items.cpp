@@ -286,8 +286,10 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
         return fail(i, i + 1, "unterminated `{` in template", "this `{` is never closed",
                     "close it with `}`, or write `{{` for a literal `{`");
       flush(i);
+      // The format's `:` is outside brackets (`{any(i in 1..2: ...):.0}` has one inside).
       uint32_t colon = i + 1;
-      while (colon < close && src[colon] != ':') ++colon;
+      for (int depth = 0; colon < close && (src[colon] != ':' || depth > 0); ++colon)
+        depth += src[colon] == '(' ? 1 : src[colon] == ')' ? -1 : 0;
       std::string_view inner(src.data() + i + 1, colon - i - 1);
       std::string_view all(src.data() + i + 1, close - i - 1);
       if (size_t k = all.find_first_not_of(" \t"); k != std::string_view::npos && (all[k] == '%' || all[k] == '#')) {

@@ -95,6 +95,10 @@ void ReportingStrategy::report(antlr4::Parser* parser, antlr4::Token* found,
     d.help("a rule's actions go inside `{ ... }`");
   } else if (type == L::LBRACE && expected.contains(static_cast<size_t>(L::DOT))) {
     d.help("an event is `LEVEL.start` or `LEVEL.end`: `on layer.start { ... }`");
+  } else if (type == L::COLON) {
+    d.help("set a property with `=` (`speed = 20 mm/s`); a `:` follows the range of `any(i in 1..3: ...)` and "
+           "comes before the format of a template value: `{layer.z:.2}`")
+        .fix(input_.span(found), " =");
   } else if (type == L::PERCENT) {
     d.help("the remainder of a division is written `mod`: `layer.index mod 2 == 0`; `%` follows a number: `50%`")
         .fix(input_.span(found), "mod");

@@ -161,7 +161,8 @@ class Printer {
   bool space_between(size_t i) const {
     size_t prev = t_[i - 1].type, next = t_[i].type;
     size_t before = i >= 2 ? t_[i - 2].type : static_cast<size_t>(L::NL);
-    if (next == L::RPAREN || next == L::RBRACK || next == L::COMMA || next == L::DOT || next == L::DOTDOT)
+    if (next == L::RPAREN || next == L::RBRACK || next == L::COMMA || next == L::DOT || next == L::DOTDOT ||
+        next == L::COLON)
       return false;
     if (prev == L::LPAREN || prev == L::LBRACK || prev == L::DOT || prev == L::DOTDOT) return false;
     if (prev == L::MINUS && !ends_operand(before)) return false;  // a unary minus

@@ -4,7 +4,7 @@
 // strings, comments); only the white space between tokens changes:
 // - two spaces of indentation per block, four more for a statement continued on the next line
 //   (line breaks inside a statement are kept where the user put them);
-// - one space around operators and after `,`, none inside brackets, after a unary `-` or around
+// - one space around operators and after `,` and `:`, none inside brackets, after a unary `-` or around
 //   `.` and `..`; `%` and `°` touch their number, other units are one space away (`20 mm/s`);
 // - a block written on one line stays on one line (`{ a; b }`) while it fits in `width`
 //   columns and holds no comment; otherwise each statement goes on a line of its own;

@@ -32,6 +32,7 @@ bool continues_after(size_t t) {
     case L::ASSIGN:
     case L::COMMA:
     case L::DOT:
+    case L::COLON:
     case L::LPAREN:
     case L::LBRACK:
     case L::LBRACE:

@@ -46,11 +46,13 @@ std::string expr_text(const Document& doc, const ast::Expr& e) {
       return fmt::format("**`{}`** — a `{}` value", e.text, schema::enum_info(e.type.enum_type).name);
     case ast::RefKind::Local:
       return fmt::format("**`{}`** — {}", e.text, e.type.describe());
+    case ast::RefKind::Bound:
+      return fmt::format("**`{}`** — an integer: each step of the range of the `any`/`all` around it", e.text);
     default:
       break;
   }
   if (e.kind == ast::ExprKind::Name && e.from_param) return param_text(doc, e.text);
-  if (e.kind == ast::ExprKind::Call) return function_text(e.text);
+  if (e.kind == ast::ExprKind::Call || e.kind == ast::ExprKind::Quantifier) return function_text(e.text);
   if (e.kind == ast::ExprKind::Number && !e.unit_text.empty() && !e.type.is_error())
     return fmt::format("`{}`: {}", doc.analysis.program->sources.text(e.span), e.type.describe());
   return {};

@@ -59,6 +59,8 @@ const std::vector<FunctionDoc>& functions() {
       {"tan", "tan(angle)", "tangent of an angle in deg (or of a plain number in radians)"},
       {"atan2", "atan2(y, x)", "the angle of (x, y), in deg"},
       {"lerp", "lerp(a, b, t)", "a + (b - a) * t"},
+      {"any", "any(i in LO..HI: CONDITION)", "true when the condition holds for one integer i of the constant range"},
+      {"all", "all(i in LO..HI: CONDITION)", "true when the condition holds for every integer i of the constant range"},
   };
   return all;
 }
