@@ -11,9 +11,9 @@ namespace tranche::lsp {
 namespace {
 
 std::string field_text(const schema::FieldInfo& f, bool other_layer) {
-  return fmt::format("**`{}`** — field, {}\n\nknown from the *{}* stage{}\n\n{}", f.name,
-                     type_text(f.type, f.unit, f.enum_type), schema::stage_name(f.stage),
-                     other_layer ? " (here read for another layer)" : "", f.doc);
+  return fmt::format("**`{}`** — field of each `{}`, {}\n\nknown from the *{}* stage{}\n\n{}", f.name,
+                     schema::level_name(f.level), type_text(f.type, f.unit, f.enum_type),
+                     schema::stage_name(f.stage), other_layer ? " (here read for another layer)" : "", f.doc);
 }
 
 std::string param_text(const Document& doc, const std::string& name) {
