@@ -109,10 +109,15 @@ void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
   }
 }
 
-// `below.F` or `above.F`, read directly.
+// `below.F` or `above.F`, read directly or scaled by constants (`above.area * 2`): 0 when the
+// neighbour is the empty layer.
 const Expr* neighbour(const Expr& e) {
-  bool direct = e.ref == ast::RefKind::OtherLayer && e.kind == ExprKind::Member && e.other != ast::OtherLayer::Indexed;
-  return direct ? &e : nullptr;
+  if (e.ref == ast::RefKind::OtherLayer && e.kind == ExprKind::Member && e.other != ast::OtherLayer::Indexed) return &e;
+  if (e.kind == ExprKind::Binary && (e.op == ast::Op::Mul || e.op == ast::Op::Div) && !e.constant) {
+    if (e.args[1]->constant) return neighbour(*e.args[0]);
+    if (e.op == ast::Op::Mul && e.args[0]->constant) return neighbour(*e.args[1]);
+  }
+  return nullptr;
 }
 
 bool reads_other_layers(const Expr& e) {
