@@ -749,6 +749,7 @@ void Checker::placeholders(const ast::Template& t) {
     const ast::TemplatePart& p = t.parts[k];
     if (p.expr) continue;
     std::string raw(sources_.text(p.span));
+    if (raw.find_first_of("[%{$") == std::string::npos) continue;  // most text: nothing to look at
     // `${layer.z}`: the `$` of a shell or JavaScript template is printed.
     if (!raw.empty() && raw.back() == '$' && k + 1 < t.parts.size() && t.parts[k + 1].expr) {
       ast::Span dollar = sources_.span(p.span.file, p.span.end() - 1, p.span.end());

@@ -79,6 +79,30 @@ void add_use_paths(Items& items, const std::string& typed, const Document& doc,
   }
 }
 
+// The collection a `for NAME in ...` before the cursor loops over ("" if NAME is not one).
+std::string loop_collection(const std::string& text, const std::string& name) {
+  std::regex loop_re("for\\s+" + name + "\\s+in\\s+(path\\.points|path\\.pieces|layer\\.islands)");
+  std::string found;
+  for (std::sregex_iterator it(text.begin(), text.end(), loop_re), end; it != end; ++it) found = (*it)[1];
+  return found;
+}
+
+// The unit of the field or property compared just before the number being typed, if any.
+std::string compared_unit(const std::string& before) {
+  static const std::regex cmp_re(R"(([\w.]+)\s*(?:[<>]=?|==|!=|\bin)\s*-?[\d.]+\s*[a-zA-Z°%/23]*$)");
+  std::smatch m;
+  if (!std::regex_search(before, m, cmp_re)) return {};
+  if (auto f = schema::find_field(m[1].str())) {
+    const auto& info = schema::field(*f);
+    return info.unit == schema::Unit::Ratio ? "%" : std::string(schema::unit_name(info.unit));
+  }
+  if (auto p = schema::find_property(m[1].str())) {
+    const auto& info = schema::property(*p);
+    return info.unit == schema::Unit::Ratio ? "%" : std::string(schema::unit_name(info.unit));
+  }
+  return {};
+}
+
 void add_names(Items& items, const Document& doc) {
   for (const auto& p : schema::properties())
     items.add(std::string(p.name), kProperty, type_text(p.type, p.unit, p.enum_type), property_text(p));
@@ -138,6 +162,14 @@ json completion(const Document& doc, const json& position, const compiler::Front
     word_from(m[2].length());
     bool other = m[1] == "below" || m[1] == "above";
     add_fields(items, other ? "layer" : m[1].str(), other);
+  } else if (std::regex_search(before, m, member_re) && !loop_collection(doc.text.substr(0, at), m[1]).empty()) {
+    // `p.` of `for p in path.points`: the fields of a point, a piece or an island.
+    word_from(m[2].length());
+    std::string coll = loop_collection(doc.text.substr(0, at), m[1]);
+    if (coll == "path.points")
+      for (const char* f : {"x", "y", "index"}) items.add(f, kField, "of a point");
+    else
+      add_fields(items, coll == "path.pieces" ? "piece" : "island", false);
   } else if ((std::regex_search(before, m, compare_re) || std::regex_search(before, m, assign_re)) &&
              enum_of(m[1]) != schema::EnumType::None) {
     word_from(m[2].length());
@@ -159,6 +191,7 @@ json completion(const Document& doc, const json& position, const compiler::Front
         want = info.unit == schema::Unit::Ratio ? "%" : std::string(schema::unit_name(info.unit));
       }
     }
+    if (want.empty()) want = compared_unit(before);
     for (const char* u : kUnits) items.add(u, kUnit, "unit", {}, want == u ? "0" : "1");
   } else if (std::regex_search(before, m, hook_re)) {
     word_from(m[2].length());

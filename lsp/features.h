@@ -16,8 +16,9 @@ json publish_diagnostics(const Document& doc);
 // param's value and where it is set; a `use` target's path; an enum value, a function.
 json hover(const Document& doc, const json& position);
 
-// textDocument/completion: fields after `LEVEL.`, events after `on LEVEL.`, enum values after
-// `==`, `!=`, `in (` and `=` of an enum, units after a number, hook levels after `before`,
+// textDocument/completion: fields after `LEVEL.` (and after a loop variable: `p.`), events after
+// `on LEVEL.`, enum values after `==`, `!=`, `in (` and `=` of an enum, units after a number (the
+// unit of the property set or the field compared first), hook levels after `before`,
 // `after`, `on` and `replace`, stdlib and relative paths in `use "..."`, else properties,
 // params, functions, levels and keywords.
 json completion(const Document& doc, const json& position, const compiler::FrontendOptions& options);

@@ -177,6 +177,12 @@ TEST_CASE("lsp: completion by context") {
   check("use \"printers/", "printers/generic-marlin");
   check("param pause_at = 5 mm\nrule { sp", "speed");
   check("param pause_at = 5 mm\nrule when layer.z > pa", "pause_at");
+  check("rule { before path { for pc in path.pieces { comment \"{pc.", "overhang", "area");
+  check("rule { replace path { for p in path.points { move to (p.", "x", "overhang");
+  // The unit of the field compared first.
+  s.open("rule when layer.z > 2 ");
+  for (const auto& i : s.at("textDocument/completion", 0, 22)["items"])
+    if (i["label"] == "mm") CHECK(i["sortText"] == "0mm");
   // The property's unit first.
   s.open("rule { speed = 20 ");
   for (const auto& i : s.at("textDocument/completion", 0, 18)["items"])
