@@ -239,6 +239,20 @@ std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::
     }
     if (!primary.empty()) out.append(",\"locations\":[").append(primary).append("]");
     if (!related.empty()) out.append(",\"relatedLocations\":[").append(related).append("]");
+    // The suggested edits, as SARIF fixes (one fix: all of them together).
+    std::string changes;
+    for (const auto& f : d.fixes) {
+      if (f.span.file >= sources.size() || !f.span.valid()) continue;
+      auto [end_line, end_col] = sources.line_col(f.span.file, f.span.end());
+      changes += fmt::format(
+          "{}{{\"artifactLocation\":{{\"uri\":{}}},\"replacements\":[{{\"deletedRegion\":{{\"startLine\":{},"
+          "\"startColumn\":{},\"endLine\":{},\"endColumn\":{}}},\"insertedContent\":{{\"text\":{}}}}}]}}",
+          changes.empty() ? "" : ",", json_string(sources.file(f.span.file).path), f.span.line, f.span.col, end_line,
+          end_col, json_string(f.replacement));
+    }
+    if (!changes.empty())
+      out += fmt::format(",\"fixes\":[{{\"description\":{{\"text\":{}}},\"artifactChanges\":[{}]}}]",
+                         json_string(d.helps.empty() ? d.message : d.helps[0]), changes);
     out += "}";
   }
   return out + "]}]}\n";

@@ -119,6 +119,11 @@ TEST_CASE("diagnostics: SARIF 2.1.0, one result per diagnostic with its primary 
   CHECK(s.find("\"ruleId\":\"E0103\",\"level\":\"error\"") != std::string::npos);
   CHECK(s.find("\"region\":{\"startLine\":1,\"startColumn\":15,\"endLine\":1,\"endColumn\":25}") != std::string::npos);
   CHECK(s.find("help: did you mean `speed`?") != std::string::npos);
+  // The did-you-mean's edit, as a fix.
+  CHECK(s.find("\"fixes\":[{\"description\":{\"text\":\"did you mean `layer.index`?\"},\"artifactChanges\":[{"
+               "\"artifactLocation\":{\"uri\":\"test.rules\"},\"replacements\":[{\"deletedRegion\":{\"startLine\":1,"
+               "\"startColumn\":15,\"endLine\":1,\"endColumn\":25},\"insertedContent\":{\"text\":\"layer.index\"}}]}]}]") !=
+        std::string::npos);
   CHECK(s.back() == '\n');
   // An empty run is still a valid log.
   CHECK(compiler::render_sarif(c.program.sources, {}).find("\"results\":[]") != std::string::npos);
