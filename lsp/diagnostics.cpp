@@ -18,12 +18,15 @@ bool unnecessary(const std::string& code) {
 // file:///.../docs/diagnostics.md#e0102 in the checkout the server was built from, if it is there.
 std::string docs_href(const std::string& code) {
 #ifdef TRANCHE_DOCS_DIR
-  std::error_code ec;
-  std::filesystem::path page = std::filesystem::path(TRANCHE_DOCS_DIR) / "diagnostics.md";
-  if (!std::filesystem::exists(page, ec)) return {};
+  static const std::string page = [] {
+    std::error_code ec;
+    std::filesystem::path p = std::filesystem::path(TRANCHE_DOCS_DIR) / "diagnostics.md";
+    return std::filesystem::exists(p, ec) ? path_to_uri(p.string()) : std::string();
+  }();
+  if (page.empty()) return {};
   std::string anchor = code;
   std::transform(anchor.begin(), anchor.end(), anchor.begin(), [](unsigned char c) { return std::tolower(c); });
-  return path_to_uri(page.string()) + "#" + anchor;
+  return page + "#" + anchor;
 #else
   (void)code;
   return {};

@@ -51,6 +51,7 @@ Document* Server::find(const json& params) {
 
 void Server::analyze(Document& doc, std::vector<json>& out) {
   auto t0 = std::chrono::steady_clock::now();
+  retired_.push_back(std::move(doc.analysis));
   doc.analysis = lsp::analyze(doc.path, doc.text, options_);
   cache_->sweep();
   last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -114,6 +115,7 @@ json Server::request(const std::string& method, const json& params, bool& handle
 }
 
 std::vector<json> Server::handle(const json& message) {
+  retired_.clear();  // callers that do not go through run()
   std::vector<json> out;
   if (!message.is_object()) {
     out.push_back(error_response(nullptr, kInvalidRequest, "a message is a JSON object"));
@@ -161,6 +163,7 @@ int Server::run(std::istream& in, std::ostream& out) {
     else
       replies = handle(message);
     for (const auto& r : replies) write_message(out, r.dump(-1, ' ', false, json::error_handler_t::replace));
+    retired_.clear();
   }
   return shutdown_ ? 0 : 1;
 }

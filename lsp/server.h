@@ -39,6 +39,9 @@ class Server {
 
   compiler::FrontendOptions options_;
   std::unique_ptr<ItemCache> cache_;  // incremental parsing, shared by every document
+  // Analyses replaced by newer ones: freed once the replies are written, not before (freeing a
+  // large program takes as long as a fifth of checking it).
+  std::vector<Analysis> retired_;
   std::map<std::string, std::unique_ptr<Document>> docs_;
   bool initialized_ = false, shutdown_ = false, exited_ = false;
   double last_ms_ = 0;
