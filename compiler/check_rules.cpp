@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <regex>
 
 #include "compiler/check.h"
 #include "compiler/checker.h"
@@ -336,46 +335,6 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
   return false;
 }
 
-namespace {
-// The constant values an expression can take: itself, or both branches of an `if`.
-void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
-  if (e.kind == ast::ExprKind::If && !e.args[0]->constant) {
-    constant_leaves(*e.args[1], out);
-    constant_leaves(*e.args[2], out);
-  } else if (e.constant) {
-    out.push_back(&e);
-  }
-}
-}  // namespace
-
-// E0212: a constant outside the property's physical range stops the slice whenever it is set.
-// (Angles are brought into [0°, 360°) instead: W206 warns about them.)
-void Checker::range(const Expr& value, schema::PropId prop) {
-  const auto& p = schema::property(prop);
-  if ((p.type != schema::Type::Number && p.type != schema::Type::Int) || p.unit == schema::Unit::Deg) return;
-  std::vector<const Expr*> leaves;
-  constant_leaves(value, leaves);
-  for (const Expr* e : leaves) {
-    double v = *e->constant;
-    if (v >= p.min && v <= p.max) continue;
-    auto& d = sink_.error(
-        "E0212", e->span,
-        fmt::format("`{}` = {} is outside its physical range", p.name, format_quantity(v, p.unit)),
-        fmt::format("expected {} to {}", format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
-    d.note("a value outside the range stops the slice wherever the rule applies");
-    bool plain_literal = e->kind == ast::ExprKind::Number && e->unit_text.empty();
-    if (p.id == schema::PropId::Fan && v > 100 && v <= 255 && plain_literal) {
-      std::string fixed = fmt::format("{:.0f}%", v / 255 * 100);
-      d.help(fmt::format("`fan` is a fraction of full speed, not M106's 0-255: {:g} is `{}`", v, fixed)).fix(e->span, fixed);
-    } else if (p.unit == schema::Unit::Ratio && v > 1 && v <= 100 && plain_literal) {
-      d.help(fmt::format("for a percentage, write `{:g}%`", v)).fix(e->span, fmt::format("{:g}%", v));
-    } else {
-      d.help(fmt::format("give `{}` a value from {} to {}, or `clamp(...)` a computed one", p.name,
-                         format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
-    }
-  }
-}
-
 void Checker::hook(ast::Rule& r, Stmt& s, bool replace) {
   auto level = level_named(s.name);
   if (!level) {
@@ -647,70 +606,6 @@ void Checker::loop(Stmt& s, Stmt& action, std::vector<Local>& locals, int nestin
   locals.resize(mark);
 }
 
-// `any(i in LO..HI: C)` / `all(...)`: C for each integer i of a constant range, at most
-// kMaxQuantifierSteps of them, so that a filter stays a bounded computation.
-Type Checker::quantifier(Expr& e, ExprContext& ctx) {
-  constexpr int64_t kMaxQuantifierSteps = 1000;
-  Type lo = expr(*e.args[0], ctx);
-  Type hi = expr(*e.args[1], ctx);
-  bool ok = !lo.is_error() && !hi.is_error();
-  for (const Expr* bound : {e.args[0].get(), e.args[1].get()}) {
-    if (ok && (bound->type.kind != Kind::Int || !bound->constant)) {
-      sink_
-          .error("E0405", bound->span,
-                 fmt::format("the bounds of `{}` must be integers known before slicing", e.text),
-                 bound->type.kind != Kind::Int ? "not an integer" : "not a constant")
-          .help(fmt::format("`{}` looks at a fixed number of values: `{}({} in 1..3: ...)`", e.text, e.text, e.member));
-      ok = false;
-    }
-  }
-  if (ok) {
-    double n = *e.args[1]->constant - *e.args[0]->constant + 1;
-    ast::Span range = join(e.args[0]->span, e.args[1]->span);
-    if (n > static_cast<double>(kMaxQuantifierSteps)) {
-      sink_.error("E0405", range,
-                  fmt::format("this range has {:.0f} steps; `{}` takes at most {}", n, e.text, kMaxQuantifierSteps),
-                  "too many steps");
-      ok = false;
-    } else if (n <= 0 && user_file(sources_, range)) {
-      sink_
-          .warning("W210", range, fmt::format("the range `{}` is empty: `{}` is always {}", sources_.text(range),
-                                              e.text, e.text == "any" ? "false" : "true"),
-                   "no steps")
-          .help("ranges count up and include both ends: `1..3` is 1, 2, 3");
-    }
-  }
-  // The variable is a name like a `let`'s: not a property, param, level or enum value.
-  std::string clash;
-  if (schema::find_property(e.member)) clash = "is a property";
-  else if (params_.count(e.member)) clash = "is a param";
-  else if (level_named(e.member) || e.member == "below" || e.member == "above" || e.member == "layers")
-    clash = "names a level";
-  for (const auto& en : schema::enums())
-    if (clash.empty() && en.id != schema::EnumType::None && schema::find_enum_value(en.id, e.member))
-      clash = fmt::format("is a `{}` value", en.name);
-  if (!clash.empty()) {
-    sink_.error("E0108", e.member_span, fmt::format("`{}` {}", e.member, clash), "choose another name");
-    return Type::error();
-  }
-  bound_.push_back({e.member, e.member_span, false});
-  Type body = expr(*e.args[2], ctx);
-  bool used = bound_.back().used;
-  bound_.pop_back();
-  if (!used && !e.member.starts_with('_') && user_file(sources_, e.member_span))
-    sink_.warning("W209", e.member_span, fmt::format("the variable `{}` is never used", e.member), "unused")
-        .help(fmt::format("`{}` tests the same condition at every step: read `{}` in it, or drop the `{}`", e.text,
-                          e.member, e.text));
-  if (!ok || body.is_error()) return Type::error();
-  if (body.kind != Kind::Bool) {
-    sink_.error("E0201", e.args[2]->span,
-                fmt::format("the condition of `{}` must be true or false, found {}", e.text, body.describe()),
-                "not true or false");
-    return Type::error();
-  }
-  return Type::boolean();
-}
-
 void Checker::move(Stmt& s, ExprContext& ctx) {
   for (Expr* coord : {s.x.get(), s.y.get()}) {
     expr(*coord, ctx);
@@ -739,47 +634,6 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
     expected_unit_.reset();
     if (assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span))
       range(*o.value, *p);
-  }
-}
-
-// E0008: placeholders of other slicers in a template's text would be printed as they are.
-void Checker::placeholders(const ast::Template& t) {
-  static const std::regex foreign(R"(\[([A-Za-z_][A-Za-z0-9_]*)\]|%([A-Za-z_][A-Za-z0-9_]*)%|\{\{\s*([A-Za-z_][A-Za-z0-9_.]*)\s*\}\})");
-  for (size_t k = 0; k < t.parts.size(); ++k) {
-    const ast::TemplatePart& p = t.parts[k];
-    if (p.expr) continue;
-    std::string raw(sources_.text(p.span));
-    if (raw.find_first_of("[%{$") == std::string::npos) continue;  // most text: nothing to look at
-    // `${layer.z}`: the `$` of a shell or JavaScript template is printed.
-    if (!raw.empty() && raw.back() == '$' && k + 1 < t.parts.size() && t.parts[k + 1].expr) {
-      ast::Span dollar = sources_.span(p.span.file, p.span.end() - 1, p.span.end());
-      sink_.error("E0008", dollar, "`${...}`: the `$` would be printed before the value", "printed as it is")
-          .help("a template's values are written `{...}` without `$`")
-          .fix(dollar, "");
-    }
-    for (std::sregex_iterator it(raw.begin(), raw.end(), foreign), end; it != end; ++it) {
-      const std::smatch& m = *it;
-      int group = m[1].matched ? 1 : m[2].matched ? 2 : 3;
-      std::string name = m[group];
-      std::string ours;
-      std::string_view whose = group == 3 ? "Jinja's (Klipper's)" : group == 1 ? "PrusaSlicer's" : "another slicer's";
-      if (auto f = foreign_value(name)) {
-        ours = std::string(f->ours);
-        if (group == 1 && !f->whose.empty()) whose = f->whose;
-      } else if (schema::find_property(name) || schema::find_field(name) || params_.count(name)) {
-        ours = name;
-      }
-      if (ours.empty()) continue;  // `[done]`, `{{x}}`: text the user means
-      uint32_t at = p.span.offset + static_cast<uint32_t>(m.position(0));
-      ast::Span span = sources_.span(p.span.file, at, at + static_cast<uint32_t>(m.length(0)));
-      std::string fixed = "{" + ours + "}";
-      sink_
-          .error("E0008", span,
-                 fmt::format("`{}` is {} placeholder syntax: it would be printed as it is", m.str(0), whose),
-                 "printed as it is")
-          .help(fmt::format("a template prints a value written in braces: `{}`", fixed))
-          .fix(span, fixed);
-    }
   }
 }
 

@@ -242,22 +242,9 @@ std::vector<int> long_lines(const std::string& text, int width) {
   return out;
 }
 
-}  // namespace
-
-std::optional<std::string> format_file(const ast::SourceMap& sources, uint32_t file_id, diag::Sink& sink,
-                                       const FormatOptions& options) {
-  size_t errors = sink.errors();
-  parse_file(sources, file_id, sink);
-  if (sink.errors() != errors) return std::nullopt;
-
-  const std::string& src = sources.file(file_id).text;
-  bool bom = src.rfind("\xEF\xBB\xBF", 0) == 0;
-  uint32_t begin = bom ? 3 : 0;
-  Input input(sources, file_id, begin, static_cast<uint32_t>(src.size()));
-  Tokens tokens = lex(input, sink, ParseOptions{}, /*expression_only=*/false);
-  if (tokens.fatal || tokens.errors > 0) return std::nullopt;
-
-  // Significant tokens with their gaps; the file's start behaves like the start of a line.
+// The tokens the parser sees, without separators, each with what stands before it; the file's
+// start behaves like the start of a line. Ends with the end of file.
+std::vector<Tok> significant(const Tokens& tokens, const Input& input, const std::string& src, uint32_t begin) {
   std::vector<Tok> t;
   uint32_t prev_end = begin;
   bool sep = false;
@@ -281,26 +268,49 @@ std::optional<std::string> format_file(const ast::SourceMap& sources, uint32_t f
     sep = false;
     if (eof) break;
   }
+  return t;
+}
+
+// match[i]: the `}` of the `{` at i; flat[i]: that block is written on one line, without comments.
+bool match_blocks(const std::vector<Tok>& t, std::vector<size_t>& match, std::vector<bool>& flat) {
+  match.assign(t.size(), 0);
+  flat.assign(t.size(), false);
+  std::vector<size_t> open;
+  for (size_t i = 0; i + 1 < t.size(); ++i) {
+    if (t[i].type == L::LBRACE) open.push_back(i);
+    if (t[i].type != L::RBRACE || open.empty()) continue;
+    size_t o = open.back();
+    open.pop_back();
+    match[o] = i;
+    bool one_line = true;
+    for (size_t k = o + 1; k <= i && one_line; ++k)
+      one_line = t[k].gap.empty() && t[k].text.find_first_of("\r\n") == std::string::npos;
+    flat[o] = one_line;
+  }
+  return open.empty();
+}
+
+}  // namespace
+
+std::optional<std::string> format_file(const ast::SourceMap& sources, uint32_t file_id, diag::Sink& sink,
+                                       const FormatOptions& options) {
+  size_t errors = sink.errors();
+  parse_file(sources, file_id, sink);
+  if (sink.errors() != errors) return std::nullopt;
+
+  const std::string& src = sources.file(file_id).text;
+  bool bom = src.rfind("\xEF\xBB\xBF", 0) == 0;
+  uint32_t begin = bom ? 3 : 0;
+  Input input(sources, file_id, begin, static_cast<uint32_t>(src.size()));
+  Tokens tokens = lex(input, sink, ParseOptions{}, /*expression_only=*/false);
+  if (tokens.fatal || tokens.errors > 0) return std::nullopt;
+
+  std::vector<Tok> t = significant(tokens, input, src, begin);
   if (t.empty() || t.back().type != antlr4::Token::EOF) return std::nullopt;
   size_t n = t.size() - 1;  // without the end of file
-
-  // Matching braces, and blocks written on one line without comments.
-  std::vector<size_t> match(t.size(), 0), open;
-  std::vector<bool> flat(t.size(), false);
-  for (size_t i = 0; i < n; ++i) {
-    if (t[i].type == L::LBRACE) open.push_back(i);
-    if (t[i].type == L::RBRACE && !open.empty()) {
-      size_t o = open.back();
-      open.pop_back();
-      match[o] = i;
-      bool one_line = true;
-      for (size_t k = o + 1; k <= i && one_line; ++k) {
-        one_line = t[k].gap.empty() && t[k].text.find_first_of("\r\n") == std::string::npos;
-      }
-      flat[o] = one_line;
-    }
-  }
-  if (!open.empty()) return std::nullopt;
+  std::vector<size_t> match;
+  std::vector<bool> flat;
+  if (!match_blocks(t, match, flat)) return std::nullopt;
 
   std::set<size_t> broken;
   Printer top(t, match, flat, broken);

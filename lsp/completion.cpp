@@ -103,6 +103,21 @@ std::string compared_unit(const std::string& before) {
   return {};
 }
 
+// Units, the one of the property being set (or of the field compared) first.
+void add_units(Items& items, const std::string& before) {
+  std::string want;
+  std::smatch a;
+  static const std::regex target_re(R"(^\s*(\w+)\s*=)");
+  if (std::regex_search(before, a, target_re)) {
+    if (auto prop = schema::find_property(a[1].str())) {
+      const auto& info = schema::property(*prop);
+      want = info.unit == schema::Unit::Ratio ? "%" : std::string(schema::unit_name(info.unit));
+    }
+  }
+  if (want.empty()) want = compared_unit(before);
+  for (const char* u : kUnits) items.add(u, kUnit, "unit", {}, want == u ? "0" : "1");
+}
+
 void add_names(Items& items, const Document& doc) {
   for (const auto& p : schema::properties())
     items.add(std::string(p.name), kProperty, type_text(p.type, p.unit, p.enum_type), property_text(p));
@@ -181,18 +196,7 @@ json completion(const Document& doc, const json& position, const compiler::Front
     for (auto v : info.values) items.add(std::string(v), kEnumMember, std::string(info.name));
   } else if (std::regex_search(before, m, number_re)) {
     word_from(m[1].length());
-    // The unit of the property being set comes first.
-    std::string want;
-    std::smatch a;
-    static const std::regex target_re(R"(^\s*(\w+)\s*=)");
-    if (std::regex_search(before, a, target_re)) {
-      if (auto prop = schema::find_property(a[1].str())) {
-        const auto& info = schema::property(*prop);
-        want = info.unit == schema::Unit::Ratio ? "%" : std::string(schema::unit_name(info.unit));
-      }
-    }
-    if (want.empty()) want = compared_unit(before);
-    for (const char* u : kUnits) items.add(u, kUnit, "unit", {}, want == u ? "0" : "1");
+    add_units(items, before);
   } else if (std::regex_search(before, m, hook_re)) {
     word_from(m[2].length());
     bool replace = m[1] == "replace";
