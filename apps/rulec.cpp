@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "apps/rulec_commands.h"
 #include "base/output_file.h"
 #include "grammar/ast/ast.h"
 #include "compiler/check.h"
@@ -29,12 +30,18 @@ constexpr const char* kUsage =
     "       rulec build [options] FILE... -o OUT.bundle [--no-debug]\n"
     "       rulec disasm FILE.bundle|FILE.rules...\n"
     "       rulec explain [options] FILE... --at \"layer.index=3, path.kind=outer_perimeter\"\n"
+    "       rulec fmt [--check] FILE...|-\n"
+    "       rulec lsp [--stdlib DIR]\n"
     "\n"
     "check    checks .rules files: syntax, names, types and units, stages, lints\n"
     "build    checks, then compiles the files (in cascade order) into one bundle for\n"
     "         `tranche slice --rules OUT.bundle`\n"
     "disasm   prints a bundle's (or compiled rules') tables and bytecode\n"
     "explain  for one context, says which rule decides each slot and why later rules do not match\n"
+    "fmt      rewrites .rules files (and the ```rules blocks of .md files) in the canonical layout;\n"
+    "         `-` formats standard input to standard output\n"
+    "lsp      a Language Server Protocol server on standard input and output, for editors\n"
+    "         (editors/README.md)\n"
     "\n"
     "Exit status: 0 no errors (warnings allowed), 1 errors, 2 usage error.\n"
     "\n"
@@ -61,6 +68,7 @@ constexpr const char* kUsage =
     "                         with or without that profile (explain: with; the others: without)\n"
     "  --dump-ast             (check) print the checked AST\n"
     "  --time                 print the time of each phase on stderr\n"
+    "  --check                (fmt) change nothing; exit with 1 if a file is not formatted\n"
     "  -h, --help             this text\n"
     "\n"
     "Diagnostic codes are explained in docs/diagnostics.md; the bundle format in docs/bundles.md.\n";
@@ -330,6 +338,8 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return 0;
   }
+  if (cmd == "fmt") return tranche::apps::fmt_command(argc, argv);
+  if (cmd == "lsp") return tranche::apps::lsp_command(argc, argv);
   if (cmd != "check" && cmd != "build" && cmd != "disasm" && cmd != "explain")
     return usage_error(std::string("unknown command `").append(cmd).append("`"));
   Args a;

@@ -42,12 +42,16 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     case ExprKind::Bool:
       t = Type::boolean();
       break;
-    case ExprKind::String:
-      sink_
-          .error("E0206", e.span, "a string is not a value here",
-                 "strings are only used by `gcode` and `comment`")
-          .help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
+    case ExprKind::String: {
+      auto& d = sink_.error("E0206", e.span, "a string is not a value here",
+                            "strings are only used by `gcode` and `comment`");
+      d.help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
+      // `"infill"` where a name is meant: the name without its quotes.
+      if (e.text.size() > 2 && e.text.find_first_of(" \\{}") == std::string::npos && e.text[0] == '"' &&
+          e.text[1] != '"')
+        d.fix(e.span, e.text.substr(1, e.text.size() - 2));
       break;
+    }
     case ExprKind::Name:
       t = name(e, ctx, hint);
       break;
@@ -90,6 +94,9 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     case ExprKind::If:
       t = if_expr(e, ctx, hint);
       break;
+    case ExprKind::Quantifier:
+      t = quantifier(e, ctx);
+      break;
   }
   if (t.kind == Kind::Number && !t.unit.in_range()) {
     sink_.error("E0208", e.span, fmt::format("the unit of this value, `{}`, is out of range", t.unit.name()),
@@ -114,16 +121,32 @@ Type Checker::number(Expr& e) {
     for (auto s : ast::unit_spellings()) all.emplace_back(s);
     auto& d = sink_.error("E0106", e.unit_span, fmt::format("unknown unit `{}`", e.unit_text), "not a unit");
     const std::string& u = e.unit_text;
-    if (u == "min" || u == "h" || u == "ms") {
+    std::string lower = u;
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    std::optional<std::string> best;
+    if (expected_unit_) {
+      // The spellings of the unit the value needs come first: a temperature never gets `deg`.
+      int best_d = 1 << 20;
+      for (auto s : ast::unit_spellings()) {
+        auto sp = ast::parse_unit(s);
+        if (!sp || sp->unit != *expected_unit_) continue;
+        int dist = edit_distance(u, s);
+        if (dist < best_d) best_d = dist, best = std::string(s);
+      }
+      if (best_d > std::max<int>(2, static_cast<int>(u.size()))) best.reset();
+    }
+    if (u == "min" || u == "h" || u == "ms" || lower.starts_with("sec")) {
       d.help("times are written in seconds: `s`");
     } else if (u == "cm" || u == "m" || u == "um" || u == "in" || u == "inch") {
       d.help("lengths are written in millimetres: `mm`");
     } else if (u == "K" || u == "F") {
       d.help("temperatures are written in degrees Celsius: `°C` or `C`");
-    } else if (auto best = suggest(u, all)) {
+    } else if (u.find('C') != std::string::npos || lower.find("cel") != std::string::npos) {
+      d.did_you_mean(e.unit_span, "°C");  // `degC`, `celsius`: never `deg`, an angle
+    } else if (best || (best = suggest(u, all))) {
       // `mms`, `mmps`: a speed is more likely than a length.
       if (*best == "mm" && u.size() > 2 && u.find('s', 2) != std::string::npos) *best = "mm/s";
-      d.help(fmt::format("did you mean `{}`?", *best));
+      d.did_you_mean(e.unit_span, *best);
     }
     d.note("units: mm, mm2, mm3, mm/s, mm/s2, mm3/s, deg (or °), s, °C (or C), %");
     return Type::error();
@@ -157,6 +180,17 @@ Type Checker::binary(Expr& e, ExprContext& ctx) {
       return compare(e, ctx);
     default:
       break;
+  }
+  // `1200 mm/min`: a speed in another slicer's unit, read as a division by the name `min`.
+  if (const Expr& l = *e.args[0], &r = *e.args[1]; e.op == Op::Div && l.kind == ExprKind::Number &&
+                                                     l.unit_text == "mm" && r.kind == ExprKind::Name &&
+                                                     (r.text == "min" || r.text == "h")) {
+    double per_s = l.number / (r.text == "min" ? 60 : 3600);
+    std::string fixed = fmt::format("{:g} mm/s", per_s);
+    sink_.error("E0106", join(l.unit_span, r.span), fmt::format("unknown unit `mm/{}`", r.text), "not a unit")
+        .help(fmt::format("speeds are written in mm/s: `{}` is `{}`", sources_.text(e.span), fixed))
+        .fix(e.span, fixed);
+    return Type::error();
   }
   Type a = expr(*e.args[0], ctx);
   Type b = expr(*e.args[1], ctx);

@@ -105,6 +105,13 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
       return Type::enumeration(hint);
     }
   }
+  for (size_t k = bound_.size(); k-- > 0;) {
+    if (bound_[k].name != n) continue;
+    bound_[k].used = true;
+    e.ref = RefKind::Bound;
+    e.local = static_cast<int>(k);
+    return Type::integer();
+  }
   if (Local* l = find_local(ctx, n)) {
     l->used = true;
     if (l->element != ast::Element::None && l->element != ast::Element::Int) {
@@ -158,7 +165,10 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     std::vector<std::string> values(want.values.begin(), want.values.end());
     auto& d = sink_.error("E0104", e.span, fmt::format("unknown `{}` value `{}`", want.name, n),
                           fmt::format("not a `{}` value", want.name));
-    if (auto best = suggest(n, values)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto same = enum_synonym(want.name, n))
+      d.help(fmt::format("what other slicers call `{}` is `{}` here", n, *same)).fix(e.text_span, std::string(*same));
+    else if (auto best = suggest(n, values))
+      d.did_you_mean(e.text_span, *best);
     d.note(fmt::format("`{}` values are {}", want.name, quoted_list(values, 12)));
     return Type::error();
   }
@@ -168,6 +178,19 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
                             : fmt::format("read one of its fields, like `{}.{}`", n, example_field(n)));
     return Type::error();
   }
+  if (auto theirs = foreign_value(n)) {
+    sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n), "not a name of the rule language")
+        .help(fmt::format("`{}` is {} name for it: here it is `{}`", n,
+                          theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours))
+        .fix(e.text_span, std::string(theirs->ours));
+    return Type::error();
+  }
+  if (n == "True" || n == "False" || n == "TRUE" || n == "FALSE") {
+    std::string lower = n == "True" || n == "TRUE" ? "true" : "false";
+    sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n), "not a name of the rule language")
+        .did_you_mean(e.text_span, lower);
+    return Type::error();
+  }
   std::vector<std::string> candidates = property_names();
   for (const auto& f : schema::fields()) candidates.emplace_back(f.name);
   for (const auto& [name, value] : params_) candidates.push_back(name);
@@ -175,7 +198,7 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     for (const auto& l : *ctx.locals) candidates.push_back(l.name);
   auto& d = sink_.error("E0100", e.span, fmt::format("unknown name `{}`", n),
                         ctx.locals ? "not a property, field or `let` name" : "not a property or field");
-  if (auto best = suggest(n, candidates)) d.help(fmt::format("did you mean `{}`?", *best));
+  if (auto best = suggest(n, candidates)) d.did_you_mean(e.text_span, *best);
   if (n == "s" || n == "mm")
     d.help("write units right after the number, without spaces around `/`: `20 mm/s`");
   return Type::error();
@@ -216,7 +239,7 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
             "E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
             fmt::format("not a field of {}", l->element == ast::Element::Piece ? "a piece" : "an island"));
         if (auto best = suggest(obj + "." + m, fields_of(prefix, obj + ".")))
-          d.help(fmt::format("did you mean `{}`?", *best));
+          d.did_you_mean(join(e.text_span, e.member_span), *best);
         return Type::error();
       }
       default:
@@ -243,8 +266,11 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
     }
     auto& d = sink_.error("E0102", e.span, fmt::format("unknown field `{}`", full),
                           fmt::format("not a field of `{}`", obj));
-    if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
-      d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto same = field_synonym(obj, m)) {
+      d.did_you_mean(join(e.text_span, e.member_span), std::string(*same));
+      if (*same == "path.kind") d.note("what other slicers call a path's feature type or extrusion role is `path.kind`");
+    } else if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
+      d.did_you_mean(join(e.text_span, e.member_span), *best);
     } else if (schema::find_property(m)) {
       d.help(fmt::format("`{}` is a property: write `{}`", m, m));
     }
@@ -265,7 +291,7 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
     for (const auto& l : *ctx.locals) candidates.push_back(l.name);
   auto& d = sink_.error("E0101", e.text_span, fmt::format("unknown level `{}`", obj), "not a level");
   if (auto best = suggest(obj, candidates)) {
-    d.help(fmt::format("did you mean `{}.{}`?", *best, m));
+    d.did_you_mean(e.text_span, *best);
   } else if (schema::find_property(obj)) {
     d.help(fmt::format("`{}` is a property: it has no fields", obj));
   }
@@ -304,7 +330,7 @@ Type Checker::other_layer_field(Expr& e, const ast::Span& object_span) {
     auto& d = sink_.error("E0102", e.member_span, fmt::format("unknown field `{}`", shown),
                           "not a field of a layer");
     if (auto best = suggest(full, fields_of("layer.", "layer.")))
-      d.help(fmt::format("did you mean `{}`?", best->substr(6)));
+      d.did_you_mean(e.member_span, best->substr(6));
     return Type::error();
   }
   if (!other_layer_readable(*f)) {
@@ -333,7 +359,7 @@ Type Checker::call(Expr& e, ExprContext& ctx) {
     for (const auto& f : kFuncs) names.emplace_back(f.name);
     auto& d =
         sink_.error("E0105", e.text_span, fmt::format("unknown function `{}`", e.text), "not a function");
-    if (auto best = suggest(e.text, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(e.text, names)) d.did_you_mean(e.text_span, *best);
     d.note(fmt::format("functions are {}", quoted_list(names, 20)));
     return Type::error();
   }

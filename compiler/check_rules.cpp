@@ -228,7 +228,12 @@ void Checker::modifier(ast::Rule& r, Stmt& s) {
                                 "not a property")
                   : sink_.error("E0103", s.name_span, fmt::format("unknown property `{}`", s.name),
                                 "not a property");
-    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto theirs = foreign_property(s.name))
+      d.help(fmt::format("`{}` is {} name for it: here it is `{}`", s.name,
+                         theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours))
+          .fix(s.name_span, std::string(theirs->ours));
+    else if (auto best = suggest(s.name, names))
+      d.did_you_mean(s.name_span, *best);
     if (level_named(s.name) || schema::find_field(s.name))
       d.note("fields describe the print and cannot be set");
     expr(*s.value, ctx);
@@ -236,8 +241,11 @@ void Checker::modifier(ast::Rule& r, Stmt& s) {
   }
   const auto& info = schema::property(*p);
   s.prop = *p;
+  if (info.type == schema::Type::Number) expected_unit_ = ast::Unit::from_schema(info.unit);
   expr(*s.value, ctx, info.enum_type);
+  expected_unit_.reset();
   bool ok = assignable(*s.value, Type::of(info.type, info.unit, info.enum_type), s.name, s.name_span);
+  if (ok && !r.from_set) range(*s.value, *p);
   if (ok && r.from_set && s.value->constant &&
       (*s.value->constant < info.min || *s.value->constant > info.max)) {
     auto& d = sink_.error(
@@ -281,8 +289,19 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
                        fmt::format("`{}` needs {}, found {}", target, want.describe(),
                                    got.kind == Kind::Int ? std::string("a plain number") : got.describe()),
                        gu.plain() ? "this has no unit" : fmt::format("this is in `{}`", gu.name()));
-        if (gu.plain() && value.kind == ast::ExprKind::Number)
-          d.help(fmt::format("write `{} {}`", sources_.text(value.span), want.unit.name()));
+        if (gu.plain() && value.kind == ast::ExprKind::Number && value.unit_text == "%") {
+          // `width = 110%`: a fraction of what? Of the value the earlier rules give it.
+          if (schema::find_property(target)) {
+            std::string fixed = fmt::format("{} * {}", target, sources_.text(value.span));
+            d.help(fmt::format("`%` is a fraction of something: `{} = {}` scales the value the earlier rules give "
+                               "it; or write a value in `{}`",
+                               target, fixed, want.unit.name()))
+                .fix(value.span, fixed);
+          }
+        } else if (gu.plain() && value.kind == ast::ExprKind::Number) {
+          std::string fixed = fmt::format("{} {}", sources_.text(value.span), want.unit.name());
+          d.help(fmt::format("write `{}`", fixed)).fix(value.span, fixed);
+        }
         else if (want.unit.plain())
           d.note(fmt::format("`{}` is a plain number (a ratio: `1` or `100%` is the full amount)", target));
         return false;
@@ -290,7 +309,8 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
       if (want.kind == Kind::Int && got.kind != Kind::Int) {
         fail("E0203", fmt::format("`{}` needs an integer, found {}", target, got.describe()),
              "not an integer")
-            .help("round it: `round(...)`, `floor(...)` or `ceil(...)`");
+            .help("round it: `round(...)`, `floor(...)` or `ceil(...)`")
+            .fix(value.span, fmt::format("round({})", sources_.text(value.span)));
         return false;
       }
       return true;
@@ -320,7 +340,7 @@ void Checker::hook(ast::Rule& r, Stmt& s, bool replace) {
   if (!level) {
     std::vector<std::string> names = {"print", "layer", "island", "cell", "path"};
     auto& d = sink_.error("E0101", s.name_span, fmt::format("unknown level `{}`", s.name), "not a level");
-    if (auto best = suggest(s.name, names)) d.help(fmt::format("did you mean `{}`?", *best));
+    if (auto best = suggest(s.name, names)) d.did_you_mean(s.name_span, *best);
     d.note(replace ? "`replace` takes `path` or `island`"
                    : "hooks are on `print`, `layer`, `island`, `cell` or `path`");
     return;
@@ -600,7 +620,7 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
       auto& d = sink_.error("E0407", o.name_span, fmt::format("`move ... with` cannot set `{}`", o.name),
                             "not a move setting");
       if (auto best = suggest(o.name, {"speed", "flow", "width"}))
-        d.help(fmt::format("did you mean `{}`?", *best));
+        d.did_you_mean(o.name_span, *best);
       d.note("a move takes `speed`, `flow` and `width`");
       expr(*o.value, ctx);
       continue;
@@ -609,12 +629,16 @@ void Checker::move(Stmt& s, ExprContext& ctx) {
       sink_.error("E0407", o.name_span, fmt::format("`{}` is given twice", o.name), "given again");
     o.prop = *p;
     const auto& info = schema::property(*p);
+    expected_unit_ = ast::Unit::from_schema(info.unit);
     expr(*o.value, ctx);
-    assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span);
+    expected_unit_.reset();
+    if (assignable(*o.value, Type::of(info.type, info.unit, info.enum_type), o.name, o.name_span))
+      range(*o.value, *p);
   }
 }
 
 void Checker::text(ast::Template& t, ExprContext& ctx) {
+  placeholders(t);
   for (auto& p : t.parts) {
     if (!p.expr) continue;
     Type type = expr(*p.expr, ctx);
@@ -671,7 +695,8 @@ void Checker::unused_locals(std::vector<Local>& locals, size_t from) {
     if (l.used || l.name.starts_with('_') || !user_file(sources_, l.span)) continue;
     if (l.loop)
       sink_.warning("W209", l.span, fmt::format("loop variable `{}` is never used", l.name), "unused")
-          .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"));
+          .help(fmt::format("to repeat without reading it, name it `_`: `for _ in ...`"))
+          .fix(l.span, "_");
     else
       sink_.warning("W200", l.span, fmt::format("`let {}` is never used", l.name), "unused")
           .help("remove it, or start its name with `_`");

@@ -77,6 +77,7 @@ class Checker {
   ast::Type in_set(ast::Expr& e, ExprContext& ctx);
   ast::Type in_range(ast::Expr& e, ExprContext& ctx);
   ast::Type if_expr(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
+  ast::Type quantifier(ast::Expr& e, ExprContext& ctx);
   ast::Type number(ast::Expr& e);
   bool same_units(const ast::Expr& a, const ast::Expr& b, const ast::Span& op, std::string_view verb);
   void fold(ast::Expr& e);
@@ -93,6 +94,7 @@ class Checker {
             bool& emitted);
   void move(ast::Stmt& s, ExprContext& ctx);
   void text(ast::Template& t, ExprContext& ctx);
+  void placeholders(const ast::Template& t);
   bool declare(std::vector<Local>& locals, Local local, ast::Stmt& action);
   void unused_locals(std::vector<Local>& locals, size_t from);
   void conjuncts(ast::Rule& r);
@@ -115,7 +117,16 @@ class Checker {
   ast::Program& program_;
   const ast::SourceMap& sources_;
   diag::Sink& sink_;
+  void range(const ast::Expr& value, schema::PropId prop);
   ast::Rule* rule_ = nullptr;           // the rule being checked
+  std::optional<ast::Unit> expected_unit_;  // of the value being checked, for unit suggestions
+  // The variables of the quantifiers (`any(i in 1..3: ...)`) around the expression being checked.
+  struct BoundVar {
+    std::string name;
+    ast::Span span;
+    bool used = false;
+  };
+  std::vector<BoundVar> bound_;
   std::set<schema::PropId> rule_sets_;  // properties the current rule sets
   std::set<uint32_t> stage_reported_;   // offsets of reads already reported in this rule
   std::vector<Dependency> deps_;

@@ -274,6 +274,7 @@ class Generator {
   // The register holding e's value: a local's own register, or a new one.
   int value(const Expr& e) {
     if (!e.constant && e.ref == RefKind::Local) return e.local;
+    if (!e.constant && e.ref == RefKind::Bound) return bound_[static_cast<size_t>(e.local)];
     if (!e.constant && e.ref == RefKind::ElementField && e.element == ast::Element::Point &&
         e.point_field == ast::PointField::Index)
       return e.local;
@@ -339,6 +340,11 @@ class Generator {
         emit(VOp::LoadK, d, konst(e.enum_value));
         span_ = saved;
         return;
+      case RefKind::Bound:
+        if (bound_[static_cast<size_t>(e.local)] != dst)
+          emit(VOp::Move, d, static_cast<uint16_t>(bound_[static_cast<size_t>(e.local)]));
+        span_ = saved;
+        return;
       case RefKind::None:
         break;
     }
@@ -384,6 +390,9 @@ class Generator {
       case ExprKind::Call:
         call(e, dst);
         break;
+      case ExprKind::Quantifier:
+        quantifier(e, dst);
+        break;
       default:
         // Names, members and strings are resolved (ref) or reported by the checker.
         emit(VOp::LoadK, d, konst(0));
@@ -391,6 +400,27 @@ class Generator {
     }
     release(m);
     span_ = saved;
+  }
+
+  // `any(i in lo..hi: c)` (`all`) into dst: i counts up from lo, and the loop stops at the first
+  // step that decides (c true for `any`, false for `all`). The VM bounds backward jumps.
+  void quantifier(const Expr& e, int dst) {
+    bool any = e.text == "any";
+    auto d = static_cast<uint8_t>(dst);
+    int i = alloc();
+    into(*e.args[0], i);
+    bound_.push_back(i);
+    emit(VOp::LoadK, d, konst(any ? 0 : 1));
+    Label top, hit, done;
+    place(top);
+    jump_to(emit(VOp::JGtRK, static_cast<uint8_t>(i), konst(*e.args[1]->constant)), done);
+    cond(*e.args[2], any, hit);
+    emit(VOp::Incr, static_cast<uint8_t>(i));
+    jmp(top);
+    place(hit);
+    emit(VOp::LoadK, d, konst(any ? 1 : 0));
+    place(done);
+    bound_.pop_back();
   }
 
   // A boolean expression into a register: 1 or 0.
@@ -716,6 +746,7 @@ class Generator {
   std::unordered_map<uint64_t, uint16_t> konst_;
   std::map<std::string, uint16_t> strings_;
   std::unordered_map<uint64_t, uint32_t> locs_;
+  std::vector<int> bound_;  // registers of the quantifier variables around the expression
 };
 
 }  // namespace

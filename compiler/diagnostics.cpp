@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <set>
 
 #include <algorithm>
@@ -115,13 +116,12 @@ std::string render_text(const ast::SourceMap& sources, const diag::Diagnostic& d
       }
     }
   }
-  if (!d.notes.empty() || !d.helps.empty()) {
-    if (!by_line.empty()) out += fmt::format("{} {}\n", pad, st.paint("|", kBlue));
-    for (const auto& n : d.notes)
-      out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("note", kBold) + ": " + n);
-    for (const auto& h : d.helps)
-      out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("help", kBold) + ": " + h);
-  }
+  if (!by_line.empty()) out += fmt::format("{} {}\n", pad, st.paint("|", kBlue));
+  for (const auto& n : d.notes)
+    out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("note", kBold) + ": " + n);
+  for (const auto& h : d.helps)
+    out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("help", kBold) + ": " + h);
+  out += fmt::format("{} {} {}\n", pad, st.paint("=", kBlue), st.paint("docs", kBold) + ": " + docs_link(d.code));
   return out;
 }
 
@@ -183,6 +183,14 @@ std::string render_json(const ast::SourceMap& sources, const diag::Diagnostic& d
     if (i) out += ',';
     out += json_string(d.helps[i]);
   }
+  out += "],\"fixes\":[";
+  for (size_t i = 0; i < d.fixes.size(); ++i) {
+    const diag::Fix& f = d.fixes[i];
+    if (f.span.file >= sources.size()) continue;
+    out += fmt::format("{}{{\"file\":{},\"byte_start\":{},\"byte_end\":{},\"replacement\":{}}}", i ? "," : "",
+                       json_string(sources.file(f.span.file).path), f.span.offset, f.span.end(),
+                       json_string(f.replacement));
+  }
   return out + "]}";
 }
 
@@ -197,7 +205,7 @@ std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::
   bool first = true;
   for (const auto& c : codes) {
     out += fmt::format("{}{{\"id\":{},\"helpUri\":{}}}", first ? "" : ",", json_string(c),
-                       json_string("docs/diagnostics.md#" + c));
+                       json_string(docs_link(c)));
     first = false;
   }
   out += "]}},\"results\":[";
@@ -231,9 +239,29 @@ std::string render_sarif(const ast::SourceMap& sources, const std::vector<diag::
     }
     if (!primary.empty()) out.append(",\"locations\":[").append(primary).append("]");
     if (!related.empty()) out.append(",\"relatedLocations\":[").append(related).append("]");
+    // The suggested edits, as SARIF fixes (one fix: all of them together).
+    std::string changes;
+    for (const auto& f : d.fixes) {
+      if (f.span.file >= sources.size() || !f.span.valid()) continue;
+      auto [end_line, end_col] = sources.line_col(f.span.file, f.span.end());
+      changes += fmt::format(
+          "{}{{\"artifactLocation\":{{\"uri\":{}}},\"replacements\":[{{\"deletedRegion\":{{\"startLine\":{},"
+          "\"startColumn\":{},\"endLine\":{},\"endColumn\":{}}},\"insertedContent\":{{\"text\":{}}}}}]}}",
+          changes.empty() ? "" : ",", json_string(sources.file(f.span.file).path), f.span.line, f.span.col, end_line,
+          end_col, json_string(f.replacement));
+    }
+    if (!changes.empty())
+      out += fmt::format(",\"fixes\":[{{\"description\":{{\"text\":{}}},\"artifactChanges\":[{}]}}]",
+                         json_string(d.helps.empty() ? d.message : d.helps[0]), changes);
     out += "}";
   }
   return out + "]}]}\n";
+}
+
+std::string docs_link(std::string_view code) {
+  std::string anchor(code);
+  for (char& c : anchor) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return "docs/diagnostics.md#" + anchor;
 }
 
 std::string summary(size_t errors, size_t warnings) {

@@ -59,7 +59,8 @@ class Loader {
   void expand(uint32_t file, const fs::path& key) {
     loaded_[key.string()] = file;
     stack_.push_back(file);
-    ast::File parsed = grammar::parse_file(program_.sources, file, sink_, options_.parse);
+    ast::File parsed = options_.parser ? options_.parser(program_.sources, file, sink_)
+                                       : grammar::parse_file(program_.sources, file, sink_, options_.parse);
     std::map<std::string, ast::Span> used_here;
     for (auto& item : parsed.items) {
       if (item.rule) {
@@ -223,7 +224,11 @@ bool add_set(ast::Program& program, std::string_view key, std::string_view value
     auto& d = sink.error("E0103", key_span,
                          fmt::format("unknown property{} `{}` in `--set`", any_params ? " or param" : "", key),
                          any_params ? "not a property or a param of these rules" : "not a property");
-    if (auto best = suggest(key, names)) d.help(fmt::format("did you mean `--set {}={}`?", *best, value));
+    if (auto theirs = foreign_property(key))
+      d.help(fmt::format("`{}` is {} name for it: write `--set {}={}`", key,
+                         theirs->whose.empty() ? "another slicer's" : theirs->whose, theirs->ours, value));
+    else if (auto best = suggest(key, names))
+      d.help(fmt::format("did you mean `--set {}={}`?", *best, value));
     return false;
   }
   if (value.find_first_not_of(" \t") == std::string_view::npos) {

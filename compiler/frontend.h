@@ -32,6 +32,9 @@ struct FrontendOptions {
   // Reads a file's bytes; nothing if it is missing or not a regular file. Tests and the fuzzer
   // replace it; the default reads from disk, refusing files over kMaxFileBytes.
   std::function<std::optional<std::string>(const std::filesystem::path&)> read_file;
+  // Parses file `id` of the program; grammar::parse_file when unset. The language server passes
+  // one that copies the items of the unchanged parts of a file from its previous parse.
+  std::function<ast::File(const ast::SourceMap&, uint32_t id, diag::Sink&)> parser;
 };
 
 inline constexpr size_t kMaxFileBytes = 16u << 20;

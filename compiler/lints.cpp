@@ -90,10 +90,10 @@ void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
   }
 }
 
-// W206: a constant outside the property's physical range.
+// W206: a constant angle outside the property's range (other properties: E0212, an error).
 void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
   const auto& p = schema::property(prop);
-  if (p.type != schema::Type::Number && p.type != schema::Type::Int) return;
+  if (p.unit != schema::Unit::Deg) return;
   std::vector<const Expr*> leaves;
   constant_leaves(value, leaves);
   for (const Expr* e : leaves) {
@@ -105,7 +105,73 @@ void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
         fmt::format("expected {} to {}", format_quantity(p.min, p.unit), format_quantity(p.max, p.unit)));
     if (p.unit == schema::Unit::Ratio && v > 1 && v <= 100 && e->kind == ExprKind::Number &&
         e->unit_text.empty())
-      d.help(fmt::format("for a percentage, write `{:g}%`", v));
+      d.help(fmt::format("for a percentage, write `{:g}%`", v)).fix(e->span, fmt::format("{:g}%", v));
+  }
+}
+
+// `below.F` or `above.F`, read directly or scaled by constants (`above.area * 2`): 0 when the
+// neighbour is the empty layer.
+const Expr* neighbour(const Expr& e) {
+  if (e.ref == ast::RefKind::OtherLayer && e.kind == ExprKind::Member && e.other != ast::OtherLayer::Indexed) return &e;
+  if (e.kind == ExprKind::Binary && (e.op == ast::Op::Mul || e.op == ast::Op::Div) && !e.constant) {
+    if (e.args[1]->constant) return neighbour(*e.args[0]);
+    if (e.op == ast::Op::Mul && e.args[0]->constant) return neighbour(*e.args[1]);
+  }
+  return nullptr;
+}
+
+bool reads_other_layers(const Expr& e) {
+  bool found = false;
+  walk(e, [&](const Expr& x) { found = found || x.ref == ast::RefKind::OtherLayer; });
+  return found;
+}
+
+// W214: on the first layer `below` is an empty layer (every field 0), and so is `above` on the
+// last: a comparison of one of its fields with a positive value of this layer is true there,
+// and the rule applies where the user probably did not think of. Filters that place the rule
+// (`layer.index`, `layer.z`...) or that test the neighbour against 0 (`below.area > 0`) are left alone.
+void edge_layers(const ast::SourceMap& sources, const Rule& r, diag::Sink& sink) {
+  if (!r.filter) return;
+  for (const auto& c : r.conjuncts) {
+    bool guard = false;
+    walk(*c.expr, [&](const Expr& x) {
+      guard = guard || (x.ref == ast::RefKind::Field &&
+                        (x.field == schema::FieldId::LayerIndex || x.field == schema::FieldId::LayerZ ||
+                         x.field == schema::FieldId::LayerZBottom || x.field == schema::FieldId::PrintLayers));
+    });
+    const Expr& e = *c.expr;
+    if (e.kind == ExprKind::Binary && e.args.size() == 2 && (neighbour(*e.args[0]) || neighbour(*e.args[1])) &&
+        ((e.args[0]->constant && *e.args[0]->constant == 0) || (e.args[1]->constant && *e.args[1]->constant == 0)))
+      guard = true;
+    if (guard) return;
+  }
+  for (const auto& c : r.conjuncts) {
+    const Expr& e = *c.expr;
+    if (e.kind != ExprKind::Binary || e.args.size() != 2) continue;
+    bool lt = e.op == ast::Op::Lt || e.op == ast::Op::Le, gt = e.op == ast::Op::Gt || e.op == ast::Op::Ge;
+    if (!lt && !gt) continue;
+    const Expr* side = neighbour(*e.args[0]);
+    const Expr& other = side ? *e.args[1] : *e.args[0];
+    bool left = side != nullptr;
+    if (!side) side = neighbour(*e.args[1]);
+    if (!side || reads_other_layers(other)) continue;
+    if (other.constant && *other.constant <= 0) continue;
+    // With the neighbour's field at 0 and the other side positive: `0 < X` holds, `0 > X` does not.
+    if (left ? !lt : !gt) continue;
+    bool below = side->other == ast::OtherLayer::Below;
+    std::string shown(sources.text(e.span));
+    auto& d = sink.warning("W214", e.span,
+                           fmt::format("on the {} layer, `{}` is an empty layer: `{}` is true there",
+                                       below ? "first" : "last", below ? "below" : "above", shown),
+                           fmt::format("true on the {} layer", below ? "first" : "last"));
+    d.note(fmt::format("a layer outside the print reads as an empty layer (every field 0), so the rule applies on "
+                       "the {} layer",
+                       below ? "first" : "last"));
+    std::string guard = below ? "layer.index > 0 and " : "above.area > 0 and ";
+    d.help(fmt::format("if the {} layer is not meant, say so: `{}{}`", below ? "first" : "last", guard,
+                       sources.text(r.filter->span)));
+    d.fix(sources.span(r.filter->span.file, r.filter->span.offset, r.filter->span.offset), guard);
+    return;
   }
 }
 
@@ -187,6 +253,7 @@ void lint(const ast::Program& program, diag::Sink& sink) {
     }
     float_equality(sources, r, sink);
     ranges(r, sink);
+    edge_layers(sources, r, sink);
 
     if (r.filter && !r.filter->type.is_error()) {
       if (r.filter->constant && r.filter->from_param) continue;  // a param switches it on or off: on purpose

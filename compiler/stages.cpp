@@ -114,7 +114,7 @@ Limit Checker::limit_for(const ast::Slot& slot, const ast::Rule& r) const {
 void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
   for (const auto& a : e.args) require(*a, limit, r);
   if (e.ref == RefKind::None || e.ref == RefKind::Local || e.ref == RefKind::ElementField ||
-      e.ref == RefKind::EnumValue)
+      e.ref == RefKind::EnumValue || e.ref == RefKind::Bound)
     return;
   std::string shown(sources_.text(e.span));
   auto report = [&](const char* code, std::string message, std::string label) -> diag::Diagnostic* {
@@ -137,8 +137,13 @@ void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
                                                       : known_at(known);
       if (auto* d =
               report("E0300", fmt::format("{}, so `{}` ({}) cannot be read here", limit.what, shown, when),
-                     "not known yet"))
+                     "not known yet")) {
         if (auto s = substitute(e.field, *limit.stage)) d->help(*s);
+        if (d->helps.empty())
+          d->help(fmt::format("read what is {} (the fields of `{}` and the levels above it), or set a property "
+                              "decided later",
+                              known_at(*limit.stage), schema::level_name(schema::stage_level(*limit.stage))));
+      }
     } else if (limit.level && level > *limit.level) {
       std::string of = e.ref == RefKind::OtherLayer ? "another layer"
                                                     : fmt::format("a {} field", schema::level_name(level));

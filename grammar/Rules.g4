@@ -61,6 +61,7 @@ primary
   : NUMBER unit?                                                   # numberLit
   | value=(TRUE | FALSE)                                           # boolLit
   | text=(STRING | TRIPLE_STRING)                                  # stringLit
+  | name LPAREN name IN expr DOTDOT expr COLON expr RPAREN          # quantifierExpr
   | name LPAREN (expr (COMMA expr)*)? RPAREN                       # callExpr
   | name LBRACK expr RBRACK DOT name                               # layerAccess
   | name (DOT name)?                                               # nameRef
@@ -144,6 +145,7 @@ RBRACE : '}' ;
 COMMA : ',' ;
 DOTDOT : '..' ;
 DOT : '.' ;
+COLON : ':' ;
 SEMI : ';' ;
 
 NL : '\r\n' | '\n' | '\r' ;

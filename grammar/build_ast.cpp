@@ -235,6 +235,29 @@ antlrcpp::Any AstBuilder::visitCallExpr(RulesParser::CallExprContext* ctx) {
   return give(std::move(e));
 }
 
+// `any(i in LO..HI: BODY)`: text any|all, member the variable, args LO, HI, BODY.
+antlrcpp::Any AstBuilder::visitQuantifierExpr(RulesParser::QuantifierExprContext* ctx) {
+  auto e = make(ExprKind::Quantifier, ctx);
+  e->text = name(ctx->name(0), &e->text_span);
+  e->member = name(ctx->name(1), &e->member_span);
+  for (auto* c : ctx->expr()) {
+    ExprPtr a = expr(c);
+    if (!a) return {};
+    e->args.push_back(std::move(a));
+  }
+  if (e->text != "any" && e->text != "all") {
+    failed_ = true;
+    sink_
+        .error("E0105", e->text_span, fmt::format("unknown quantifier `{}`", e->text),
+                "`any` or `all`")
+        .help(fmt::format("`any({0} in ...: C)` is true when C holds for one `{0}`, `all(...)` when for every one",
+                          e->member));
+    return {};
+  }
+  if (e->args.size() != 3 || !check_depth(*e, e->args)) return {};
+  return give(std::move(e));
+}
+
 antlrcpp::Any AstBuilder::visitLayerAccess(RulesParser::LayerAccessContext* ctx) {
   auto e = make(ExprKind::LayerAccess, ctx);
   e->text = name(ctx->name(0), &e->text_span);

@@ -36,6 +36,7 @@ class AstBuilder : public RulesBaseVisitor {
   antlrcpp::Any visitBoolLit(RulesParser::BoolLitContext* ctx) override;
   antlrcpp::Any visitStringLit(RulesParser::StringLitContext* ctx) override;
   antlrcpp::Any visitCallExpr(RulesParser::CallExprContext* ctx) override;
+  antlrcpp::Any visitQuantifierExpr(RulesParser::QuantifierExprContext* ctx) override;
   antlrcpp::Any visitLayerAccess(RulesParser::LayerAccessContext* ctx) override;
   antlrcpp::Any visitNameRef(RulesParser::NameRefContext* ctx) override;
   antlrcpp::Any visitParenExpr(RulesParser::ParenExprContext* ctx) override;

@@ -102,7 +102,8 @@ ast::RulePtr AstBuilder::on(RulesParser::OnItemContext* ctx) {
     sink_
         .error("E0107", event_span, fmt::format("unknown event `{}.{}`", hook->name, event),
                "an event is `start` or `end`")
-        .help(fmt::format("did you mean `{}.{}`?", hook->name, guess));
+        .help(fmt::format("did you mean `{}.{}`?", hook->name, guess))
+        .fix(event_span, std::string(guess));
     return nullptr;
   }
   antlr4::Token* last = ctx->name(1)->getStop();
@@ -285,9 +286,22 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
         return fail(i, i + 1, "unterminated `{` in template", "this `{` is never closed",
                     "close it with `}`, or write `{{` for a literal `{`");
       flush(i);
+      // The format's `:` is outside brackets (`{any(i in 1..2: ...):.0}` has one inside).
       uint32_t colon = i + 1;
-      while (colon < close && src[colon] != ':') ++colon;
+      for (int depth = 0; colon < close && (src[colon] != ':' || depth > 0); ++colon)
+        depth += src[colon] == '(' ? 1 : src[colon] == ')' ? -1 : 0;
       std::string_view inner(src.data() + i + 1, colon - i - 1);
+      std::string_view all(src.data() + i + 1, close - i - 1);
+      if (size_t k = all.find_first_not_of(" \t"); k != std::string_view::npos && (all[k] == '%' || all[k] == '#')) {
+        failed_ = true;
+        sink_
+            .error("E0008", sources.span(in_.file(), i, close + 1),
+                   fmt::format("Jinja's `{{{}` ... `{}}}` is not part of the rule language", all[k], all[k]),
+                   "a Klipper macro statement")
+            .help("decide in the executor: `if layer.index == 0 { gcode \"...\" } else { gcode \"...\" }`; a "
+                  "template only prints values: `{layer.z:.2}`");
+        return false;
+      }
       if (inner.find_first_not_of(" \t\r\n") == std::string_view::npos)
         return fail(i, close + 1, "empty `{}` in template", "nothing to print here",
                     "put a value inside, like `{layer.index}`, or write `{{}}` for literal braces");

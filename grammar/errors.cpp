@@ -72,14 +72,55 @@ void ReportingStrategy::report(antlr4::Parser* parser, antlr4::Token* found,
   std::string label = want.empty() ? "not expected here" : fmt::format("expected {}", want);
   auto& d = sink_.error("E0004", input_.span(found), std::move(message), std::move(label));
   size_t type = found ? found->getType() : antlr4::Token::EOF;
-  if (type == L::ASSIGN && expected.contains(static_cast<size_t>(L::EQ)))
-    d.help("to compare two values, write `==`");
+  if (type == L::ASSIGN && !expected.contains(static_cast<size_t>(L::ASSIGN)))
+    d.help("to compare two values, write `==`").fix(input_.span(found), "==");
   if (type == antlr4::Token::EOF && !unclosed_.empty())
     d.label(unclosed_.back(),
             fmt::format("this `{}` is never closed", input_.sources().text(unclosed_.back())));
-  if (type == L::IDENT && expected.contains(static_cast<size_t>(L::LBRACE)) &&
-      !expected.contains(static_cast<size_t>(L::IDENT)))
+  // The tokens around the one found (found is null only at the end of the input).
+  antlr4::TokenStream* stream = parser->getTokenStream();
+  size_t index = found ? found->getTokenIndex() : 0;
+  antlr4::Token* prev = found && index > 0 ? stream->get(index - 1) : nullptr;
+  antlr4::Token* next = found && index + 1 < stream->size() ? stream->get(index + 1) : nullptr;
+  size_t before = prev ? prev->getType() : antlr4::Token::EOF;
+  size_t after = next ? next->getType() : antlr4::Token::EOF;
+  bool statement_end = expected.contains(static_cast<size_t>(L::NL)) || expected.contains(static_cast<size_t>(L::RBRACE));
+  if (type == L::IDENT && expected.contains(static_cast<size_t>(L::WHEN))) {
+    d.help("a rule's condition follows `when`: `rule \"name\" when CONDITION { ... }`")
+        .fix(input_.span(found), "when " + found->getText());
+  } else if (type == L::IF && expected.contains(static_cast<size_t>(L::WHEN))) {
+    d.help("a rule's condition follows `when`, not `if`").fix(input_.span(found), "when");
+  } else if (type == L::IDENT && expected.contains(static_cast<size_t>(L::LBRACE)) &&
+             !expected.contains(static_cast<size_t>(L::IDENT))) {
     d.help("a rule's actions go inside `{ ... }`");
+  } else if (type == L::LBRACE && expected.contains(static_cast<size_t>(L::DOT))) {
+    d.help("an event is `LEVEL.start` or `LEVEL.end`: `on layer.start { ... }`");
+  } else if (type == L::COLON) {
+    d.help("set a property with `=` (`speed = 20 mm/s`); a `:` follows the range of `any(i in 1..3: ...)` and "
+           "comes before the format of a template value: `{layer.z:.2}`")
+        .fix(input_.span(found), " =");
+  } else if (type == L::PERCENT) {
+    d.help("the remainder of a division is written `mod`: `layer.index mod 2 == 0`; `%` follows a number: `50%`")
+        .fix(input_.span(found), "mod");
+  } else if (type == L::COMMA && statement_end) {
+    d.help("statements are separated by a newline or `;`, not `,`").fix(input_.span(found), ";");
+  } else if (type == L::LBRACK && (before == L::EQ || before == L::IN || before == L::NE)) {
+    d.help("a list of values is written in parentheses after `in`: `layer.index in (1, 2, 3)`");
+  } else if (after == L::ASSIGN && (type == L::STAR || type == L::PLUS || type == L::MINUS || type == L::SLASH)) {
+    d.help(fmt::format("there is no `{0}=`: write `speed = speed {0} 50%`", found->getText()));
+  } else if ((type == L::RULE || type == L::ON || type == L::USE || type == L::PARAM) && prev) {
+    // A rule, `on`, `use` or `param` inside a block: the block before it was never closed.
+    std::vector<antlr4::Token*> open;
+    for (size_t k = 0; k < index; ++k) {
+      antlr4::Token* t = stream->get(k);
+      if (t->getType() == L::LBRACE) open.push_back(t);
+      if (t->getType() == L::RBRACE && !open.empty()) open.pop_back();
+    }
+    if (!open.empty()) {
+      d.label(input_.span(open.front()), "this `{` is not closed before the next item");
+      d.help(fmt::format("close the block with `}}` before `{}`", found->getText()));
+    }
+  }
   if (reported_ == budget_) d.note(fmt::format("stopping after {} syntax errors in this file", budget_));
 }
 

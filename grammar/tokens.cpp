@@ -32,6 +32,7 @@ bool continues_after(size_t t) {
     case L::ASSIGN:
     case L::COMMA:
     case L::DOT:
+    case L::COLON:
     case L::LPAREN:
     case L::LBRACK:
     case L::LBRACE:
@@ -97,7 +98,8 @@ bool starts_statement(size_t t) {
   }
 }
 
-// Tokens after which a `-` is binary (they end an operand).
+}  // namespace
+
 bool ends_operand(size_t t) {
   switch (t) {
     case L::IDENT:
@@ -117,6 +119,8 @@ bool ends_operand(size_t t) {
   }
 }
 
+namespace {
+
 std::string char_help(std::string_view c) {
   if (c == "'") return "strings are written in double quotes: \"...\"";
   if (c == "&") return "write `and`";
@@ -126,7 +130,10 @@ std::string char_help(std::string_view c) {
   if (c == "≥") return "write `>=`";
   if (c == "≠") return "write `!=`";
   if (c == "×") return "write `*`";
-  if (c == ":") return "a `:` is only used for the format of a template value: `{layer.z:.2}`";
+  if (c == ":")
+    return "set a property with `=` (`speed = 20 mm/s`); a `:` is only used for the format of a template value: "
+           "`{layer.z:.2}`";
+  if (c == "$") return "values are written as they are, without `$`: `layer.z`, and `{layer.z}` in a template";
   if (c == "?") return "a choice is written `if C then A else B`";
   if (c == "^") return "there is no power operator: write `x * x`";
   return {};

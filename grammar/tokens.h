@@ -24,6 +24,9 @@ struct Tokens {
 // code on its line. With `expression_only`, every newline is dropped (a template's `{...}`).
 Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool expression_only);
 
+// Whether a token of this type ends an operand (so that a `-` after it is binary).
+bool ends_operand(size_t type);
+
 // How a token type reads in a message: "`{`", "a name", "a newline", "end of file".
 std::string token_kind_name(const antlr4::dfa::Vocabulary& vocabulary, size_t type);
 // How a token reads as what was found: its text for names and symbols.

@@ -11,6 +11,7 @@ PKGS=(
   pybind11-dev python3-dev
   libpugixml-dev
   zlib1g-dev libpng-dev
+  nlohmann-json3-dev
   liblua5.4-dev
   clang libclang-rt-dev
   python3-shapely python3-numpy python3-matplotlib

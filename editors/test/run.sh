@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# The CTest test of the TextMate grammar: installs the npm packages vscode-textmate and
-# vscode-oniguruma (package-lock.json) into WORK with `npm ci`, then runs test-grammar.js.
+# The CTest tests of editor support: installs the npm packages of package-lock.json
+# (vscode-textmate, vscode-oniguruma, vscode-jsonrpc) into WORK with `npm ci`, then runs
+# test-grammar.js, or TEST with its ARGS (test-lsp.js RULEC drives the language server).
 # Exits 77 (CTest: skipped) with a message when node or npm is missing or the npm registry
 # cannot be reached; WORK is reused while package-lock.json is unchanged.
-#   editors/test/run.sh [WORK]     (default: $TRANCHE_BINARY_DIR/editors-test, else editors/test)
+#   editors/test/run.sh [WORK [TEST ARGS...]]   (default WORK: $TRANCHE_BINARY_DIR/editors-test, else editors/test)
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 work=${1:-${TRANCHE_BINARY_DIR:+$TRANCHE_BINARY_DIR/editors-test}}
 work=${work:-$here}
+test=${2:-test-grammar.js}
+shift 2 2>/dev/null || shift $#
 
 for tool in node npm; do
   if ! command -v "$tool" >/dev/null 2>&1; then
@@ -27,7 +30,7 @@ if [[ "$work" != "$here" ]]; then
 fi
 stamp="$work/node_modules/.tranche-lock"
 if ! cmp -s "$here/package-lock.json" "$stamp" 2>/dev/null; then
-  echo "installing vscode-textmate and vscode-oniguruma with npm ci in $work"
+  echo "installing the packages of editors/test/package-lock.json with npm ci in $work"
   if ! (cd "$work" && timeout 300 npm ci --no-audit --no-fund --loglevel=error --fetch-retries=1 \
           --fetch-retry-mintimeout=2000 --fetch-retry-maxtimeout=5000 --fetch-timeout=30000 >npm.log 2>&1); then
     echo "skipped: npm ci failed (is the npm registry reachable?); last lines of $work/npm.log:"
@@ -36,4 +39,4 @@ if ! cmp -s "$here/package-lock.json" "$stamp" 2>/dev/null; then
   fi
   cp "$here/package-lock.json" "$stamp"
 fi
-exec node "$here/test-grammar.js" "$work/node_modules"
+exec node "$here/$test" "$work/node_modules" "$@"

@@ -106,6 +106,9 @@ std::string expr_str(const Expr& e) {
         case RefKind::EnumValue:
           head = fmt::format("enum {}", e.text);
           break;
+        case RefKind::Bound:
+          head = fmt::format("bound#{} {}", e.local, e.text);
+          break;
         case RefKind::None:
           head = e.member.empty() ? e.text : e.text + "." + e.member;
           break;
@@ -126,6 +129,9 @@ std::string expr_str(const Expr& e) {
       break;
     case ExprKind::If:
       head = "if";
+      break;
+    case ExprKind::Quantifier:
+      head = fmt::format("{} {}", e.text, e.member);
       break;
   }
   std::string s = head + ":" + type_name(e.type);

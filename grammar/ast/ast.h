@@ -28,6 +28,7 @@
 //                     loop variable's slot), element, and field (pieces, islands) or
 //                     point_field (points)
 //       EnumValue     `infill` where a `path_kind` is expected: enum_value (its index)
+//       Bound         `i` in `any(i in 1..3: ...)`: local is the quantifier's depth (0 outermost)
 //     Calls carry `func`. Number literals are already scaled (`50%` is 0.5).
 //
 //   Stmt      checked: Assign → prop; Hook/Replace → level; Let/For → local (slot in the
@@ -60,11 +61,12 @@ enum class ExprKind : uint8_t {
   InRange,      // args[0] in args[1]..args[2] (inclusive)
   InSet,        // args[0] in (args[1], args[2], ...)
   If,           // if args[0] then args[1] else args[2]
+  Quantifier,   // text(member in args[0]..args[1]: args[2]): `any` or `all` over an integer range
 };
 
 enum class Op : uint8_t { None, Neg, Not, Add, Sub, Mul, Div, Mod, Eq, Ne, Lt, Le, Gt, Ge, And, Or };
 
-enum class RefKind : uint8_t { None, Field, OtherLayer, Property, Inherited, Local, ElementField, EnumValue };
+enum class RefKind : uint8_t { None, Field, OtherLayer, Property, Inherited, Local, ElementField, EnumValue, Bound };
 enum class OtherLayer : uint8_t { Indexed, Below, Above };
 enum class Func : uint8_t { Min, Max, Clamp, Abs, Round, Floor, Ceil, Sqrt, Sin, Cos, Tan, Atan2, Lerp };
 // What a loop variable stands for.
@@ -258,6 +260,18 @@ struct Program {
   std::vector<schema::PropId> property_order;
   bool checked = false;  // true once the checker ran without errors
 };
+
+// Where a copied node lands: spans of the copy are in `file`, `offset` bytes and `line` lines
+// further on (a part of a file parsed on its own, put back in place; columns do not change).
+struct Relocation {
+  uint32_t file = 0;
+  uint32_t offset = 0;
+  uint32_t line = 0;
+  Span operator()(const Span& s) const;
+};
+
+// A deep copy of the syntax of an item (the checked fields are left unset), relocated.
+Item clone(const Item& item, const Relocation& to);
 
 // An indented tree of the checked AST, one node per line, for tests and `rulec check --dump-ast`.
 std::string dump(const Program& program);

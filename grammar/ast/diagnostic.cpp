@@ -19,6 +19,16 @@ Diagnostic& Diagnostic::help(std::string text) {
   return *this;
 }
 
+Diagnostic& Diagnostic::fix(const ast::Span& span, std::string replacement) {
+  fixes.push_back(Fix{span, std::move(replacement)});
+  return *this;
+}
+
+Diagnostic& Diagnostic::did_you_mean(const ast::Span& span, std::string replacement) {
+  help("did you mean `" + replacement + "`?");
+  return fix(span, std::move(replacement));
+}
+
 ast::Span Diagnostic::span() const {
   for (const auto& l : labels)
     if (l.primary) return l.span;

@@ -20,6 +20,12 @@ struct Label {
   bool primary = false;
 };
 
+// A suggested edit: the text of `span` becomes `replacement` (an editor offers it as a quick fix).
+struct Fix {
+  ast::Span span;
+  std::string replacement;
+};
+
 struct Diagnostic {
   Severity severity = Severity::Error;
   std::string code;  // "E0102", "W201"
@@ -27,10 +33,14 @@ struct Diagnostic {
   std::vector<Label> labels;  // labels[0] is the primary one; line 0 there means the whole file
   std::vector<std::string> notes;
   std::vector<std::string> helps;
+  std::vector<Fix> fixes;  // edits that apply the first help, when it is one
 
   Diagnostic& label(const ast::Span& span, std::string text);  // a secondary label
   Diagnostic& note(std::string text);
   Diagnostic& help(std::string text);
+  Diagnostic& fix(const ast::Span& span, std::string replacement);
+  // help("did you mean `REPLACEMENT`?") and the fix that writes it over `span`.
+  Diagnostic& did_you_mean(const ast::Span& span, std::string replacement);
   // The primary span (line 0 for whole-file diagnostics).
   ast::Span span() const;
 };

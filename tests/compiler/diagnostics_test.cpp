@@ -29,7 +29,8 @@ TEST_CASE("diagnostics: the text form, rustc style") {
         "1 | rule \"slow\" when layer.indx < 2 {\n"
         "  |                  ^^^^^^^^^^ not a field of `layer`\n"
         "  |\n"
-        "  = help: did you mean `layer.index`?\n");
+        "  = help: did you mean `layer.index`?\n"
+        "  = docs: docs/diagnostics.md#e0102\n");
 }
 
 TEST_CASE("diagnostics: secondary labels, notes, tabs and wide line numbers") {
@@ -45,7 +46,9 @@ TEST_CASE("diagnostics: secondary labels, notes, tabs and wide line numbers") {
         "10 | rule \"x\" when    speed > island.area { flow = 1 }\n"
         "   |                        ^ the units differ\n"
         "   |                  ----- this is in `mm/s`\n"
-        "   |                          ----------- this is in `mm2`\n");
+        "   |                          ----------- this is in `mm2`\n"
+        "   |\n"
+        "   = docs: docs/diagnostics.md#e0200\n");
 }
 
 TEST_CASE("diagnostics: colour only when asked") {
@@ -64,7 +67,17 @@ TEST_CASE("diagnostics: JSON, one object per diagnostic, with every span") {
         "{\"file\":\"test.rules\",\"line\":1,\"col\":15,\"end_line\":1,\"end_col\":20,\"byte_start\":14,"
         "\"byte_end\":19,\"label\":\"this is in `mm/s`\",\"primary\":false},"
         "{\"file\":\"test.rules\",\"line\":1,\"col\":23,\"end_line\":1,\"end_col\":34,\"byte_start\":22,"
-        "\"byte_end\":33,\"label\":\"this is in `mm2`\",\"primary\":false}],\"notes\":[],\"helps\":[]}");
+        "\"byte_end\":33,\"label\":\"this is in `mm2`\",\"primary\":false}],\"notes\":[],\"helps\":[],\"fixes\":[]}");
+}
+
+TEST_CASE("diagnostics: a did-you-mean carries the edit that applies it") {
+  One one("rule when layer.indx < 2 { flow = 1 }\n");
+  REQUIRE(one.d.fixes.size() == 1);
+  CHECK(one.c.program.sources.text(one.d.fixes[0].span) == "layer.indx");
+  CHECK(one.d.fixes[0].replacement == "layer.index");
+  CHECK(compiler::render_json(one.c.program.sources, one.d).find(
+            "\"fixes\":[{\"file\":\"test.rules\",\"byte_start\":10,\"byte_end\":20,\"replacement\":\"layer.index\"}]") !=
+        std::string::npos);
 }
 
 TEST_CASE("diagnostics: columns count characters, bytes count bytes") {
@@ -102,10 +115,15 @@ TEST_CASE("diagnostics: SARIF 2.1.0, one result per diagnostic with its primary 
   REQUIRE(c.sink.all().size() == 2);
   std::string s = compiler::render_sarif(c.program.sources, c.sink.all());
   CHECK(s.find("\"version\":\"2.1.0\"") != std::string::npos);
-  CHECK(s.find("{\"id\":\"E0102\",\"helpUri\":\"docs/diagnostics.md#E0102\"}") != std::string::npos);
+  CHECK(s.find("{\"id\":\"E0102\",\"helpUri\":\"docs/diagnostics.md#e0102\"}") != std::string::npos);
   CHECK(s.find("\"ruleId\":\"E0103\",\"level\":\"error\"") != std::string::npos);
   CHECK(s.find("\"region\":{\"startLine\":1,\"startColumn\":15,\"endLine\":1,\"endColumn\":25}") != std::string::npos);
   CHECK(s.find("help: did you mean `speed`?") != std::string::npos);
+  // The did-you-mean's edit, as a fix.
+  CHECK(s.find("\"fixes\":[{\"description\":{\"text\":\"did you mean `layer.index`?\"},\"artifactChanges\":[{"
+               "\"artifactLocation\":{\"uri\":\"test.rules\"},\"replacements\":[{\"deletedRegion\":{\"startLine\":1,"
+               "\"startColumn\":15,\"endLine\":1,\"endColumn\":25},\"insertedContent\":{\"text\":\"layer.index\"}}]}]}]") !=
+        std::string::npos);
   CHECK(s.back() == '\n');
   // An empty run is still a valid log.
   CHECK(compiler::render_sarif(c.program.sources, {}).find("\"results\":[]") != std::string::npos);

@@ -72,6 +72,10 @@ TEST_CASE(
   for (const auto& code : emitted) {
     INFO(code);
     REQUIRE(sections.count(code) == 1);
+    // The anchor text diagnostics and SARIF logs link to (compiler::docs_link).
+    std::string link = tranche::compiler::docs_link(code);
+    CHECK(link.starts_with("docs/diagnostics.md#"));
+    CHECK(md.find("<a id=\"" + link.substr(link.find('#') + 1) + "\"></a>\n\n## " + code + ": ") != std::string::npos);
     if (not_showable.count(code)) continue;
     CHECK(sections[code].find("[" + code + "] at") != std::string::npos);
   }

@@ -3,6 +3,10 @@
 //   # expect error[E0102] at 3:21           an error with this code, primary span at line 3, column 21
 //   # expect warning[W201] at 5:1           a warning
 //   # expect error[E0010] at lib/a.rules:2:5   in another file (path relative to the case's folder)
+//   # expect error[E0100] at 2:15: `layer_nr` is Cura's    ... whose text (message, labels, notes,
+//                                                          helps) contains this
+// Cases named `mistake_*.rules` (typical mistakes of users) must also give a help with every
+// diagnostic.
 //   # set speed=40                          also check `--set speed=40`
 // The run fails on any missing or unexpected diagnostic.
 #pragma once
@@ -51,6 +55,7 @@ inline std::vector<Block> rules_blocks(const std::string& md) {
 struct Expected {
   std::string level, code, file;
   uint32_t line = 0, col = 0;
+  std::string text;  // not part of the key: checked against the diagnostic's rendering
   auto key() const { return std::tie(level, code, file, line, col); }
   bool operator<(const Expected& o) const { return key() < o.key(); }
   std::string str() const {
@@ -67,7 +72,7 @@ struct Case {
 inline Case parse_expectations(const std::string& text, const std::string& file) {
   Case c;
   static const std::regex expect(
-      R"(#\s*expect\s+(ok|(error|warning)\[([EW][0-9]+)\]\s+at\s+(?:(\S+):)?([0-9]+):([0-9]+)))");
+      R"(#\s*expect\s+(ok|(error|warning)\[([EW][0-9]+)\]\s+at\s+(?:(\S+):)?([0-9]+):([0-9]+)(?::\s*(.*\S))?))");
   static const std::regex set(R"(#\s*set\s+([A-Za-z_0-9]+)=(.*))");
   size_t start = 0;
   while (start <= text.size()) {
@@ -85,6 +90,7 @@ inline Case parse_expectations(const std::string& text, const std::string& file)
         e.file = m[4].matched ? std::string(m[4]) : file;
         e.line = static_cast<uint32_t>(std::stoul(m[5]));
         e.col = static_cast<uint32_t>(std::stoul(m[6]));
+        if (m[7].matched) e.text = m[7];
         c.expected.insert(e);
       }
     } else if (std::regex_search(line, m, set)) {
@@ -118,7 +124,9 @@ inline std::string run_case(const std::filesystem::path& dir, const std::string&
   sink.finish({});
 
   std::multiset<Expected> got;
-  std::string rendered;
+  std::string rendered, problems;
+  std::vector<std::pair<Expected, std::string>> texts;  // each diagnostic and its rendering
+  bool mistake = name.starts_with("mistake_");
   for (const auto& d : sink.all()) {
     Expected e;
     e.level = d.severity == diag::Severity::Error ? "error" : "warning";
@@ -129,12 +137,20 @@ inline std::string run_case(const std::filesystem::path& dir, const std::string&
     e.line = s.line;
     e.col = s.col;
     got.insert(e);
-    rendered += compiler::render_text(program.sources, d, false);
+    std::string shown = compiler::render_text(program.sources, d, false);
+    rendered += shown;
+    texts.emplace_back(e, shown);
+    if (mistake && d.helps.empty()) problems += "  no help:    " + e.str() + "\n";
     std::string json = compiler::render_json(program.sources, d);
     if (json.empty() || json.front() != '{' || json.back() != '}' || json.find('\n') != std::string::npos)
       return "bad JSON for " + e.str() + ": " + json;
   }
-  std::string problems;
+  for (const auto& e : c.expected) {
+    if (e.text.empty()) continue;
+    bool found = false;
+    for (const auto& [g, shown] : texts) found = found || (g.key() == e.key() && shown.find(e.text) != std::string::npos);
+    if (!found) problems += "  not said:   " + e.str() + ": " + e.text + "\n";
+  }
   std::multiset<Expected> missing, unexpected;
   for (const auto& e : c.expected)
     if (got.count(e) < c.expected.count(e) && !missing.count(e)) missing.insert(e);

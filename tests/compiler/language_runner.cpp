@@ -16,6 +16,9 @@ TEST_CASE("language conformance: every tests/language case gives exactly the dia
     if (entry.is_regular_file() && entry.path().extension() == ".rules") cases.push_back(entry.path());
   std::sort(cases.begin(), cases.end());
   REQUIRE(cases.size() >= 80);
+  // The corpus of typical mistakes (users of other slicers, beginners): each caught, with a help.
+  CHECK(std::count_if(cases.begin(), cases.end(),
+                      [](const fs::path& p) { return p.filename().string().starts_with("mistake_"); }) >= 40);
   for (const auto& path : cases) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream text;

@@ -20,6 +20,7 @@ COMPONENTS = [
     ("grammar/ast", ["runtime/schema", "base"]),
     ("grammar", ["grammar/ast"]),
     ("compiler", ["grammar", "runtime/vm"]),
+    ("lsp", ["compiler"]),
     ("geometry/core", ["base"]),
     ("geometry/mesh", ["geometry/core"]),
     ("geometry/slice", ["geometry/mesh"]),
@@ -33,9 +34,9 @@ COMPONENTS = [
     ("geometry/gcode", ["geometry/plan"]),
     ("geometry/export", ["geometry/plan", "geometry/io"]),
     ("geometry/pipeline", ["geometry/export", "geometry/gcode", "geometry/fillangle", "geometry/preview", "runtime/vm"]),
-    ("apps", ["geometry/pipeline", "compiler"]),
+    ("apps", ["geometry/pipeline", "compiler", "lsp"]),
 ]
-CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
+CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "lsp", "geometry", "apps")
 
 
 def component(path):

@@ -580,3 +580,52 @@ rule "wavy" when path.kind == top_solid { replace path { default } }
   CHECK(*replaced);
   CHECK(r.replacers == std::vector<uint32_t>{2});
 }
+
+TEST_CASE("vm: any and all over a range of layers stop at the step that decides") {
+  auto rs = test::rules(R"(
+rule "step" when layer.index > 3 and any(i in 1..3: layers[layer.index - i].area < layer.area * 80%) { fan = 50% }
+rule "steady" when all(k in 1..2: layers[layer.index - k].islands == layer.islands) { flow = 90% }
+rule "nested" when any(i in 0..2: all(j in 0..1: layers[i + j].area > 0)) and layer.index == 9 { speed = 7 mm/s }
+rule "empty" when any(i in 3..1: layer.index > 0) { width = 0.3 mm }
+)");
+  // Areas by layer: 10, 10, 10, 10, 12, 12, 13, 14, 20, 0 (the last layer is empty).
+  static const double area[] = {10, 10, 10, 10, 12, 12, 13, 14, 20, 0};
+  static const double islands[] = {1, 1, 1, 2, 2, 2, 2, 1, 1, 1};
+  ctx::LayerTable table(10);
+  for (size_t i = 0; i < 10; ++i) {
+    table.set(i, FieldId::LayerIndex, static_cast<double>(i));
+    table.set(i, FieldId::LayerArea, area[i]);
+    table.set(i, FieldId::LayerIslands, islands[i]);
+  }
+  auto at = [&](int index) {
+    ctx::Context c = layer_ctx(index);
+    c.set_layers(&table);
+    c.set(FieldId::LayerArea, area[index]);
+    c.set(FieldId::LayerIslands, islands[index]);
+    auto p = ctx::PropertyValues::schema_defaults();
+    for (int st = 0; st < schema::kStageCount; ++st) p = test::decide(*rs, static_cast<Stage>(st), c, p);
+    return p;
+  };
+  // Layer 8 (20 mm2): layers 5..7 are all under 80% of it. Layer 5 (12 mm2): 10, 10 and 12 are not.
+  CHECK(at(8)[PropId::Fan] == 0.5);
+  CHECK(at(5)[PropId::Fan] == 1.0);
+  // Layer 4 (12 mm2) over layer 3 (10 mm2): 10 < 9.6 is false for 1..3. Layer 3 is filtered out.
+  CHECK(at(4)[PropId::Fan] == 1.0);
+  // all: layer 6 (2 islands) over 5 and 4 (2 each) holds; layer 3 over 2 (1 island) does not.
+  CHECK(at(6)[PropId::Flow] == doctest::Approx(0.9));
+  CHECK(at(3)[PropId::Flow] == doctest::Approx(1.0));
+  // Nested quantifiers read the outer variable; an empty range makes `any` false.
+  CHECK(at(9)[PropId::Speed] == doctest::Approx(7));
+  CHECK(at(9)[PropId::Width] != doctest::Approx(0.3));
+}
+
+TEST_CASE("vm: a quantifier compiles to a bounded loop: load, test, increment, jump back") {
+  auto p = test::program("rule when any(i in 1..3: layers[layer.index - i].area > 0) { fan = 0% }\n");
+  std::vector<vm::Op> ops;
+  for (const auto& in : p.code) ops.push_back(in.code());
+  auto has = [&](vm::Op op) { return std::find(ops.begin(), ops.end(), op) != ops.end(); };
+  CHECK(has(vm::Op::JGtRK));
+  CHECK(has(vm::Op::Incr));
+  CHECK(has(vm::Op::Jmp));
+  CHECK(vm::verify(p).ok());
+}
