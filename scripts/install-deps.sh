@@ -10,6 +10,7 @@ PKGS=(
   antlr4 libantlr4-runtime-dev default-jre-headless
   pybind11-dev python3-dev
   libpugixml-dev
+  lib3mf-dev libtinyobjloader-dev zlib1g-dev libcli11-dev
   liblua5.4-dev
   clang libclang-rt-dev
   python3-shapely python3-numpy python3-matplotlib

@@ -22,13 +22,15 @@ COMPONENTS = [
     ("compiler", ["grammar", "runtime/vm"]),
     ("geometry/core", ["base"]),
     ("geometry/mesh", ["geometry/core"]),
+    ("geometry/plate", ["geometry/mesh"]),
     ("geometry/slice", ["geometry/mesh"]),
     ("geometry/polygon", ["geometry/core"]),
     ("geometry/io", ["geometry/polygon", "geometry/slice"]),
     ("geometry/fillangle", ["geometry/core", "runtime/context"]),
     ("geometry/toolpath", ["geometry/polygon", "runtime/context"]),
     ("geometry/gcode", ["geometry/toolpath"]),
-    ("geometry/pipeline", ["geometry/io", "geometry/gcode", "geometry/fillangle", "runtime/vm"]),
+    ("geometry/pipeline", ["geometry/plate", "geometry/io", "geometry/gcode", "geometry/fillangle",
+                           "runtime/vm"]),
     ("apps", ["geometry/pipeline", "compiler"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
