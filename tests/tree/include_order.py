@@ -31,7 +31,7 @@ COMPONENTS = [
     ("geometry/gcode", ["geometry/toolpath"]),
     ("geometry/pipeline", ["geometry/plate", "geometry/io", "geometry/gcode", "geometry/fillangle",
                            "runtime/vm"]),
-    ("apps", ["geometry/pipeline", "compiler"]),
+    ("apps", ["geometry/pipeline", "geometry/plate", "compiler"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "geometry", "apps")
 
