@@ -171,12 +171,16 @@ Status each(const Values& v, const std::string& name, std::vector<T>& out, Parse
 Status plate_values(const Values& v, plate::PlateOptions& p) {
   if (Status s = each(v, "--copies", p.copies, plate::parse_copies); !s) return s;
   if (Status s = each(v, "--scale", p.scale, plate::parse_scale); !s) return s;
-  for (auto [name, list] : {std::pair{"--rotate", &p.rotate}, {"--rotate-x", &p.rotate_x}, {"--rotate-y", &p.rotate_y}})
-    if (Status s = each(v, name, *list, [&](const std::string& x) { return plate::parse_angle(name, x); }); !s)
+  for (const auto& turn : {std::pair{"--rotate", &p.rotate}, {"--rotate-x", &p.rotate_x}, {"--rotate-y", &p.rotate_y}}) {
+    const std::string name = turn.first;
+    if (Status s = each(v, name, *turn.second, [&](const std::string& x) { return plate::parse_angle(name, x); }); !s)
       return s;
-  for (auto [name, list] : {std::pair{"--move", &p.move}, {"--center", &p.center}})
-    if (Status s = each(v, name, *list, [&](const std::string& x) { return plate::parse_xy(name, x); }); !s)
+  }
+  for (const auto& place : {std::pair{"--move", &p.move}, {"--center", &p.center}}) {
+    const std::string name = place.first;
+    if (Status s = each(v, name, *place.second, [&](const std::string& x) { return plate::parse_xy(name, x); }); !s)
       return s;
+  }
   if (v.given("--spacing")) {
     auto d = plate::parse_spacing(v.last("--spacing"));
     if (!d) return d.error();

@@ -45,18 +45,34 @@ Convex inner_fit(const Bed& bed, const Box2& item, const Convex& hull) {
   return fit.size() >= 3 ? fit : Convex{};
 }
 
-void edges_crossing(const Convex& a, const Convex& b, std::vector<Vec2>& out) {
-  for (size_t i = 0; i < a.size(); ++i) {
-    const Vec2 &p = a[i], r = a[(i + 1) % a.size()] - p;
-    for (size_t j = 0; j < b.size(); ++j) {
-      const Vec2 &q = b[j], s = b[(j + 1) % b.size()] - q;
-      const double d = r.x() * s.y() - r.y() * s.x();
-      if (std::fabs(d) < 1e-12) continue;
-      const Vec2 qp = q - p;
-      const double t = (qp.x() * s.y() - qp.y() * s.x()) / d, u = (qp.x() * r.y() - qp.y() * r.x()) / d;
-      if (t >= -1e-9 && t <= 1 + 1e-9 && u >= -1e-9 && u <= 1 + 1e-9) out.push_back(p + t * r);
-    }
+struct Edge {
+  Vec2 p, d;  // from p to p + d
+  Box2 box;
+};
+
+// The edges of `c` whose bounding boxes meet `box`: the only ones that can cross the other polygon.
+std::vector<Edge> edges_near(const Convex& c, const Box2& box) {
+  std::vector<Edge> out;
+  for (size_t i = 0; i < c.size(); ++i) {
+    Edge e{c[i], c[(i + 1) % c.size()] - c[i], {}};
+    e.box.add(c[i]);
+    e.box.add(c[i] + e.d);
+    if (boxes_meet(e.box, box)) out.push_back(e);
   }
+  return out;
+}
+
+void edges_crossing(const Polygon& a, const Polygon& b, std::vector<Vec2>& out) {
+  const std::vector<Edge> ea = edges_near(a.c, b.box), eb = edges_near(b.c, a.box);
+  for (const Edge& r : ea)
+    for (const Edge& s : eb) {
+      if (!boxes_meet(r.box, s.box)) continue;
+      const double d = r.d.x() * s.d.y() - r.d.y() * s.d.x();
+      if (std::fabs(d) < 1e-12) continue;
+      const Vec2 qp = s.p - r.p;
+      const double t = (qp.x() * s.d.y() - qp.y() * s.d.x()) / d, u = (qp.x() * r.d.y() - qp.y() * r.d.x()) / d;
+      if (t >= -1e-9 && t <= 1 + 1e-9 && u >= -1e-9 && u <= 1 + 1e-9) out.push_back(r.p + t * r.d);
+    }
 }
 
 class Arranger {
@@ -83,9 +99,9 @@ class Arranger {
     for (size_t i = 0; i < nfp.size(); ++i) {
       if (!boxes_meet(nfp[i].box, fit.box)) continue;
       cand.insert(cand.end(), nfp[i].c.begin(), nfp[i].c.end());
-      edges_crossing(nfp[i].c, fit.c, cand);
+      edges_crossing(nfp[i], fit, cand);
       for (size_t j = i + 1; j < nfp.size(); ++j)
-        if (boxes_meet(nfp[i].box, nfp[j].box)) edges_crossing(nfp[i].c, nfp[j].c, cand);
+        if (boxes_meet(nfp[i].box, nfp[j].box)) edges_crossing(nfp[i], nfp[j], cand);
     }
     std::optional<Vec2> best;
     double best_score = 1e300;

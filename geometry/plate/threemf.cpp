@@ -292,6 +292,9 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
     }
     objects.push_back(std::move(o));
   }
+  if (objects.empty() && number == 0)
+    if (Status s = threemf::check_model_xml(input, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file); !s)
+      return s.error();
   if (objects.empty())
     return Error{file, number == 0 ? "the 3MF has no build items: nothing to print"
                                    : "no build item of the 3MF has anything to print"};

@@ -15,6 +15,16 @@ namespace {
 constexpr uint64_t kPartLimit = uint64_t{1} << 31;  // bytes of one XML part we inflate ourselves
 constexpr const char* kProductionNs = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06";
 constexpr int kMaxDepth = 16;  // nested components
+constexpr const char* kContentTypes =
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Types "
+    "xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\"><Default Extension=\"rels\" "
+    "ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/><Default Extension=\"model\" "
+    "ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/></Types>";
+constexpr const char* kRels =
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Relationships "
+    "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
+    "Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
+    "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>";
 
 bool ends_with_ci(std::string_view s, std::string_view tail) {
   if (s.size() < tail.size()) return false;
@@ -23,6 +33,17 @@ bool ends_with_ci(std::string_view s, std::string_view tail) {
         std::tolower(static_cast<unsigned char>(tail[i])))
       return false;
   return true;
+}
+
+// A package of `model` alone, as 3D/3dmodel.model, with the content types of `zip`.
+Result<std::string> single_part_package(const ZipArchive& zip, std::string model) {
+  std::string types = kContentTypes;
+  if (const ZipEntry* ct = zip.find("[Content_Types].xml")) {
+    auto t = zip.read(*ct, kPartLimit);
+    if (!t) return t.error();
+    types = std::move(*t);
+  }
+  return write_stored_zip({{"[Content_Types].xml", types}, {"_rels/.rels", kRels}, {"3D/3dmodel.model", model}});
 }
 
 std::string_view unslashed(std::string_view part) { return part.starts_with('/') ? part.substr(1) : part; }
@@ -54,12 +75,16 @@ Result<pugi::xml_document> parse_part(const ZipArchive& zip, const ZipEntry& ent
   return doc;
 }
 
-// The model part _rels/.rels names as the 3D model.
-Result<std::string> root_part(const ZipArchive& zip, const std::string& file) {
+// The model part _rels/.rels names as the 3D model; `dangling` is set when it also names parts
+// the package lacks (PrusaSlicer's command line names a thumbnail it does not write), which
+// lib3mf 1.8 refuses to read.
+Result<std::string> root_part(const ZipArchive& zip, const std::string& file, bool& dangling) {
   const ZipEntry* rels = zip.find("_rels/.rels");
   if (!rels) return Error{file, not_3mf(zip, "it has no _rels/.rels")};
   auto doc = parse_part(zip, *rels, file);
   if (!doc) return doc.error();
+  for (auto r : doc->child("Relationships").children("Relationship"))
+    dangling |= !zip.find(r.attribute("Target").as_string());
   for (auto r : doc->child("Relationships").children("Relationship")) {
     if (!ends_with_ci(r.attribute("Type").as_string(), "/3dmodel")) continue;
     std::string target = r.attribute("Target").as_string();
@@ -210,13 +235,7 @@ class Repacker {
       void write(const void* data, size_t size) override { out.append(static_cast<const char*>(data), size); }
     } w;
     root_doc_.save(w, "", pugi::format_raw);
-    std::string types = kContentTypes;
-    if (const ZipEntry* ct = zip_.find("[Content_Types].xml")) {
-      auto t = zip_.read(*ct, kPartLimit);
-      if (!t) return t.error();
-      types = std::move(*t);
-    }
-    return write_stored_zip({{"[Content_Types].xml", types}, {"_rels/.rels", kRels}, {"3D/3dmodel.model", w.out}});
+    return single_part_package(zip_, std::move(w.out));
   }
 
  private:
@@ -279,17 +298,6 @@ class Repacker {
     return (parts_[part] = std::move(owned)).get();
   }
 
-  static constexpr const char* kContentTypes =
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Types "
-      "xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\"><Default Extension=\"rels\" "
-      "ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/><Default Extension=\"model\" "
-      "ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/></Types>";
-  static constexpr const char* kRels =
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Relationships "
-      "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
-      "Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
-      "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>";
-
   const ZipArchive& zip_;
   std::string root_;
   const std::string& file_;
@@ -308,7 +316,8 @@ class Repacker {
 Result<Package> inspect_package(std::string_view bytes, const std::string& file, Report& report) {
   auto zip = ZipArchive::open(bytes, file);
   if (!zip) return zip.error();
-  auto root = root_part(*zip, file);
+  bool dangling = false;
+  auto root = root_part(*zip, file, dangling);
   if (!root) return root.error();
   Package pkg;
   pkg.root = *root;
@@ -329,8 +338,24 @@ Result<Package> inspect_package(std::string_view bytes, const std::string& file,
     auto packed = r.run(orca);
     if (!packed) return packed.error();
     pkg.repacked = std::move(*packed);
+  } else if (dangling) {  // the model part alone, under relationships that name only it
+    auto model = zip->read(*zip->find(pkg.root), kPartLimit);
+    if (!model) return model.error();
+    auto packed = single_part_package(*zip, std::move(*model));
+    if (!packed) return packed.error();
+    pkg.repacked = std::move(*packed);
   }
   return pkg;
+}
+
+Status check_model_xml(std::string_view bytes, const std::string& root, const std::string& file) {
+  auto zip = ZipArchive::open(bytes, file);
+  if (!zip) return zip.error();
+  const ZipEntry* e = zip->find(root);
+  if (!e) return ok_status();
+  auto doc = parse_part(*zip, *e, file);
+  if (!doc) return doc.error();
+  return ok_status();
 }
 
 }  // namespace tranche::plate::threemf

@@ -43,4 +43,8 @@ struct Package {
 // Errors: not a ZIP archive, a ZIP archive that holds no 3D model, broken parts we must read.
 Result<Package> inspect_package(std::string_view bytes, const std::string& file, Report& report);
 
+// Why the model part `root` of the package `bytes` is not well-formed XML, or ok. lib3mf 1.8 reads
+// a model cut short without complaint; when it finds nothing to print, this says why.
+Status check_model_xml(std::string_view bytes, const std::string& root, const std::string& file);
+
 }  // namespace tranche::plate::threemf

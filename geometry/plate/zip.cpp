@@ -139,6 +139,8 @@ Result<std::string> ZipArchive::read(const ZipEntry& e, uint64_t limit) const {
   const uint64_t data = e.local_offset + kLocalBytes + le(b, e.local_offset + 26, 2) + le(b, e.local_offset + 28, 2);
   if (data > b.size() || e.compressed > b.size() - data) return damaged("the data runs past the end of the file");
   const std::string_view in = b.substr(data, e.compressed);
+  // Deflate cannot expand more than 1032 to 1: a larger claim is damage, not a reason to allocate.
+  if (e.method == 8 && e.size > 1032 * e.compressed + 64) return damaged("its size is impossible for its data");
   std::string out;
   if (e.method == 0) {
     if (e.compressed != e.size) return damaged("stored sizes disagree");
@@ -183,7 +185,9 @@ Result<std::string> ZipArchive::read(const ZipEntry& e, uint64_t limit) const {
 
 std::string write_stored_zip(const std::vector<std::pair<std::string, std::string>>& files) {
   std::string out, directory;
-  for (const auto& [name, content] : files) {
+  for (const auto& file : files) {
+    const std::string& name = file.first;  // not a structured binding: the lambda below uses it
+    const std::string& content = file.second;
     const uint32_t crc = static_cast<uint32_t>(
         crc32(crc32(0, nullptr, 0), reinterpret_cast<const Bytef*>(content.data()), static_cast<uInt>(content.size())));
     const uint64_t offset = out.size();
