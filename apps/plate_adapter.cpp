@@ -3,8 +3,8 @@
 #include <stdlib.h>
 
 #include <filesystem>
+#include <fstream>
 
-#include "geometry/mesh/file_bytes.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/plate/detect.h"
 #include "runtime/context/cascade.h"
@@ -40,8 +40,13 @@ void replace_all(std::string& s, const std::string& from, const std::string& to)
 bool as_is(const plate::Plate& plate, const std::vector<std::string>& files) {
   if (files.size() != 1 || plate.objects.size() != 1) return false;
   if (plate.objects[0].transform.linear() != Eigen::Matrix3d::Identity()) return false;
-  auto bytes = geo::read_file_bytes(files[0], "a model file");
-  return bytes && plate::detect_format(bytes->view()).format == plate::Format::Stl;
+  std::ifstream in(files[0], std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(files[0], ec);
+  return !ec && plate::detect_format(head, size).format == plate::Format::Stl;
 }
 
 }  // namespace

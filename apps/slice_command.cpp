@@ -1,19 +1,32 @@
 #include "apps/slice_command.h"
 
 #include <filesystem>
+#include <fstream>
 
 #include "apps/plate_adapter.h"
 #include "compiler/load_rules.h"
+#include "geometry/plate/detect.h"
 #include "geometry/plate/plate.h"
 #include "runtime/context/overrides.h"
 
 namespace tranche::app {
 namespace {
 
+// A drawing for the SVG path: named .svg (as the pipeline decides) and not a mesh inside, since
+// the content decides (a 3MF named .svg is a plate).
 bool is_svg(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".svg";
+  if (ext != ".svg") return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::error_code ec;
+  const plate::Detected d = plate::detect_format(head, std::filesystem::file_size(path, ec));
+  const bool mesh = d.sure && (d.format == plate::Format::ThreeMf || d.format == plate::Format::Obj ||
+                               d.format == plate::Format::Stl);
+  return ec || !mesh;
 }
 
 // Options of the plate other than the files, for the SVG check.

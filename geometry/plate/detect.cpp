@@ -80,12 +80,14 @@ Detected xml_kind(std::string_view s) {
 
 }  // namespace
 
-Detected detect_format(std::string_view b) {
+Detected detect_format(std::string_view b) { return detect_format(b, b.size()); }
+
+Detected detect_format(std::string_view b, uint64_t size) {
   if (looks_like_zip(b)) return {Format::ThreeMf, "a ZIP archive (3MF?)"};
   if (b.size() >= 84) {
     uint64_t count = 0;
     for (int i = 3; i >= 0; --i) count = count << 8 | static_cast<unsigned char>(b[80 + i]);
-    if (84 + 50 * count == b.size()) return {Format::Stl, "a binary STL file"};
+    if (84 + 50 * count == size) return {Format::Stl, "a binary STL file"};
   }
   struct Magic {
     std::string_view bytes, what;
@@ -103,7 +105,7 @@ Detected detect_format(std::string_view b) {
   }};
   for (const auto& m : kMagic)
     if (b.starts_with(m.bytes)) return {Format::Other, std::string(m.what)};
-  if (!looks_like_text(b)) return {Format::Stl, "a binary file"};
+  if (!looks_like_text(b)) return {Format::Stl, "a binary file", false};
   const std::string_view s = skip_space(b);
   if (starts_with_word_ci(s, "solid")) return {Format::Stl, "an ASCII STL file"};
   if (starts_with_word_ci(s, "ply")) return {Format::Other, "a PLY mesh; export the model as STL, 3MF or OBJ"};
@@ -111,7 +113,7 @@ Detected detect_format(std::string_view b) {
   const std::string_view w = first_word(b);
   if (is_obj_keyword(w)) return {Format::Obj, "an OBJ file"};
   if (is_gcode_word(w)) return {Format::Other, "a G-code file: it is already sliced"};
-  return {Format::Stl, "a text file"};
+  return {Format::Stl, "a text file", false};
 }
 
 }  // namespace tranche::plate

@@ -2,6 +2,7 @@
 // and a file that is no model at all is named for what it is ("this is a PNG image").
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -17,9 +18,13 @@ enum class Format {
 
 struct Detected {
   Format format = Format::Stl;
-  std::string what;  // "a ZIP archive (3MF?)", "an OBJ file", "a PNG image", ...
+  std::string what;   // "a ZIP archive (3MF?)", "an OBJ file", "a PNG image", ...
+  bool sure = true;   // false: no format claimed the bytes (Stl, for the STL loader to explain)
 };
 
 Detected detect_format(std::string_view bytes);
+
+// Same, from the first bytes of a file (a few kilobytes are enough) and its whole size.
+Detected detect_format(std::string_view head, uint64_t size);
 
 }  // namespace tranche::plate

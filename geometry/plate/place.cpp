@@ -73,9 +73,14 @@ Status place_objects(Plate& plate, const PlateOptions& opt, const Bed& bed) {
 
 Status check_plate(const Plate& plate, const Bed& bed, bool allow_off_bed, Report& report) {
   const std::vector<Footprint> f = footprints(plate);
+  std::vector<Box2> box;
+  for (const auto& p : f) box.push_back(bounds(p.hull));
   for (size_t i = 0; i < f.size(); ++i)
     for (size_t j = i + 1; j < f.size(); ++j) {
       if (f[i].hull.size() < 3 || f[j].hull.size() < 3) continue;
+      const Box2 &a = box[i], &b = box[j];
+      if (a.max.x() <= b.min.x() || b.max.x() <= a.min.x() || a.max.y() <= b.min.y() || b.max.y() <= a.min.y())
+        continue;
       // Two convex hulls overlap when the origin is inside their Minkowski difference.
       if (strictly_inside(minkowski_sum(f[i].hull, negated(f[j].hull)), Vec2::Zero(), 1e-6))
         report.warn("plate-overlap", "",

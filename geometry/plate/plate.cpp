@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/plate/model_file.h"
@@ -35,14 +36,17 @@ Result<std::vector<size_t>> select(const Plate& plate, size_t loaded, const std:
                                selector, names, loaded)};
 }
 
+// Calls apply(index, value) for each object each item of `list` selects. Items without a
+// selector select every object, unless `plate_wide` (--move, --center), where they are left for
+// place_objects.
 template <class T, class F>
-Status for_each_selected(Plate& plate, size_t loaded, const std::vector<PerObject<T>>& list, const std::string& option,
-                         F apply) {
+Status for_each_selected(const Plate& plate, size_t loaded, const std::vector<PerObject<T>>& list,
+                         const std::string& option, bool plate_wide, F apply) {
   for (const auto& item : list) {
-    if (item.selector.empty() && (option == "--move" || option == "--center")) continue;  // plate-wide: later
+    if (plate_wide && item.selector.empty()) continue;
     auto which = select(plate, loaded, item.selector, option);
     if (!which) return which.error();
-    for (size_t i : *which) apply(plate.objects[i], item.value);
+    for (size_t i : *which) apply(i, item.value);
   }
   return ok_status();
 }
@@ -84,53 +88,53 @@ Result<Plate> load_plate(const std::vector<std::string>& files, Report& report) 
 
 Status apply_transforms(Plate& plate, const PlateOptions& opt, const Bed& bed, Report& report) {
   const size_t loaded = plate.objects.size();
-  for (auto& o : plate.objects) {
+  auto& objects = plate.objects;
+  for (auto& o : objects) {
     note_height(o, report);
     if (opt.lay_flat) lay_flat(o);
   }
-  const auto turn = [](const Eigen::Vector3d& axis) { return [axis](Object& o, double deg) { rotate(o, axis, deg); }; };
-  if (Status s = for_each_selected(plate, loaded, opt.rotate_x, "--rotate-x", turn(Eigen::Vector3d::UnitX())); !s)
-    return s;
-  if (Status s = for_each_selected(plate, loaded, opt.rotate_y, "--rotate-y", turn(Eigen::Vector3d::UnitY())); !s)
-    return s;
-  if (Status s = for_each_selected(plate, loaded, opt.rotate, "--rotate", turn(Eigen::Vector3d::UnitZ())); !s)
-    return s;
-  if (Status s = for_each_selected(plate, loaded, opt.scale, "--scale",
-                                   [](Object& o, const Eigen::Vector3d& f) { scale(o, f); });
+  const auto turn = [&](const Eigen::Vector3d& axis) {
+    return [&objects, axis](size_t i, double deg) { rotate(objects[i], axis, deg); };
+  };
+  for (const auto& [list, option, axis] : {std::tuple{&opt.rotate_x, "--rotate-x", Eigen::Vector3d::UnitX()},
+                                          {&opt.rotate_y, "--rotate-y", Eigen::Vector3d::UnitY()},
+                                          {&opt.rotate, "--rotate", Eigen::Vector3d::UnitZ()}})
+    if (Status s = for_each_selected(plate, loaded, *list, option, false, turn(axis)); !s) return s;
+  if (Status s = for_each_selected(plate, loaded, opt.scale, "--scale", false,
+                                   [&](size_t i, const Eigen::Vector3d& f) { scale(objects[i], f); });
       !s)
     return s;
-  for (auto& o : plate.objects) {
+  for (auto& o : objects) {
     if (opt.scale_to_fit) scale_to_fit(o, bed, report);
     drop_to_bed(o);
     if (opt.arrange == ArrangeMode::Always) o.placed = false;  // 3MF positions give way to the arrangement
   }
   std::vector<int> copies(loaded, 1);
-  if (Status s = for_each_selected(plate, loaded, opt.copies, "--copies",
-                                   [&](Object& o, int n) { copies[&o - plate.objects.data()] = n; });
+  if (Status s = for_each_selected(plate, loaded, opt.copies, "--copies", false, [&](size_t i, int n) { copies[i] = n; });
       !s)
     return s;
   std::map<std::pair<std::string, std::string>, int> next;  // (file, name) -> next copy number
   for (size_t i = 0; i < loaded; ++i) {
-    int& k = next[{plate.objects[i].file, plate.objects[i].name}];
-    k = std::max(k, plate.objects[i].copy + 1);
+    int& k = next[{objects[i].file, objects[i].name}];
+    k = std::max(k, objects[i].copy + 1);
   }
   for (size_t i = 0; i < loaded; ++i)
     for (int c = 1; c < copies[i]; ++c) {
-      Object o = plate.objects[i];
+      Object o = objects[i];
       o.copy = next[{o.file, o.name}]++;
       o.placed = false;
-      plate.objects.push_back(std::move(o));
+      objects.push_back(std::move(o));
     }
-  if (Status s = for_each_selected(plate, loaded, opt.move, "--move",
-                                   [](Object& o, const Vec2& by) {
-                                     translate(o, {by.x(), by.y(), 0});
-                                     o.placed = true;
+  if (Status s = for_each_selected(plate, loaded, opt.move, "--move", true,
+                                   [&](size_t i, const Vec2& by) {
+                                     translate(objects[i], {by.x(), by.y(), 0});
+                                     objects[i].placed = true;
                                    });
       !s)
     return s;
-  return for_each_selected(plate, loaded, opt.center, "--center", [](Object& o, const Vec2& at) {
-    center_at(o, at);
-    o.placed = true;
+  return for_each_selected(plate, loaded, opt.center, "--center", true, [&](size_t i, const Vec2& at) {
+    center_at(objects[i], at);
+    objects[i].placed = true;
   });
 }
 

@@ -213,6 +213,79 @@ void forward_warnings(PLib3MFBase* reader, const std::string& file, Report& repo
   }
 }
 
+// The build items of a model read by lib3mf, one object each.
+class Build {
+ public:
+  Build(const std::string& file, const threemf::Package& pkg, double mm, Report& report)
+      : file_(file), pkg_(pkg), to_mm_(Eigen::Scaling(mm)), report_(report),
+        stem_(std::filesystem::path(file).stem().string()) {}
+
+  // Adds build item `number` (from 1); items that are no model, or empty, are left out with a warning.
+  Status add(PLib3MFBase* item, int number) {
+    Handle obj;
+    if (lib3mf_builditem_getobjectresource(item, obj.out()) != LIB3MF_OK)
+      return Error{file_, fmt::format("build item {}: {}", number, lib3mf_message(item))};
+    DWORD id = 0, type = MODELOBJECTTYPE_MODEL;
+    lib3mf_resource_getresourceid(obj.get(), &id);
+    lib3mf_object_gettype(obj.get(), &type);
+    std::string name = utf8(obj.get(), lib3mf_object_getnameutf8);
+    if (name.empty()) {
+      const auto p = pkg_.prusa.find(id);
+      name = p != pkg_.prusa.end() && !p->second.name.empty() ? p->second.name : stem_;
+    }
+    const std::string where = fmt::format("{}, object '{}'", file_, name);
+    if (type != MODELOBJECTTYPE_MODEL) {
+      report_.warn("3mf-ignored", where, "not a model object (a support or surface object): left out");
+      return ok_status();
+    }
+    MODELTRANSFORM m{};
+    Eigen::Affine3d t = Eigen::Affine3d::Identity();
+    BOOL has = false;
+    if (lib3mf_builditem_hasobjecttransform(item, &has) == LIB3MF_OK && has &&
+        lib3mf_builditem_getobjecttransform(item, &m) == LIB3MF_OK)
+      t = to_affine(m);
+    if (!(std::fabs(t.linear().determinant()) > kMinDeterminant))
+      return Error{where, fmt::format("build item {} has a transform that flattens the object (determinant {:g}): "
+                                      "it has no volume to print; fix the item's transform",
+                                      number, t.linear().determinant())};
+    Object o;
+    o.name = name;
+    o.file = file_;
+    o.placed = true;
+    o.copy = instances_[id]++;
+    o.transform = to_mm_ * t * to_mm_.inverse();
+    if (auto it = first_.find(id); it != first_.end()) {
+      o.mesh = objects_[it->second].mesh;
+    } else {
+      Collector c(file_, pkg_, report_);
+      if (Status s = c.collect(obj.get(), to_mm_, 0); !s) return s;
+      if (c.corners().empty()) {
+        report_.warn("3mf-empty", where, "the object has no triangles to print: left out");
+        return ok_status();
+      }
+      auto mesh = geo::weld_corners(c.corners(), where, report_);
+      if (!mesh) return mesh.error();
+      o.mesh = std::move(*mesh);
+      o.mesh.name = name;
+      first_[id] = objects_.size();
+    }
+    objects_.push_back(std::move(o));
+    return ok_status();
+  }
+
+  std::vector<Object>& objects() { return objects_; }
+
+ private:
+  const std::string& file_;
+  const threemf::Package& pkg_;
+  const Eigen::Affine3d to_mm_;
+  Report& report_;
+  const std::string stem_;
+  std::vector<Object> objects_;
+  std::map<DWORD, int> instances_;  // resource id -> build items seen
+  std::map<DWORD, size_t> first_;   // resource id -> index in objects_ of its first instance
+};
+
 }  // namespace
 
 Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string& file, Report& report) {
@@ -229,76 +302,24 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
   forward_warnings(reader.get(), file, report);
   DWORD unit = MODELUNIT_MILLIMETER;
   lib3mf_model_getunit(model.get(), &unit);
-  const double mm = unit_mm(unit);
-  const Eigen::Affine3d to_mm(Eigen::Scaling(mm));
-
   Handle items;
   if (lib3mf_model_getbuilditems(model.get(), items.out()) != LIB3MF_OK) return read_error(file, model.get());
-  std::vector<Object> objects;
-  std::map<DWORD, int> instances;  // resource id -> build items seen
-  std::map<DWORD, size_t> first;   // resource id -> index in `objects` of its first instance
-  const std::string stem = std::filesystem::path(file).stem().string();
+  Build build(file, *pkg, unit_mm(unit), report);
   BOOL has = false;
   int number = 0;
   while (lib3mf_builditemiterator_movenext(items.get(), &has) == LIB3MF_OK && has) {
-    ++number;
-    Handle item, obj;
-    if (lib3mf_builditemiterator_getcurrent(items.get(), item.out()) != LIB3MF_OK ||
-        lib3mf_builditem_getobjectresource(item.get(), obj.out()) != LIB3MF_OK)
-      return Error{file, fmt::format("build item {}: {}", number, lib3mf_message(items.get()))};
-    DWORD id = 0, type = MODELOBJECTTYPE_MODEL;
-    lib3mf_resource_getresourceid(obj.get(), &id);
-    lib3mf_object_gettype(obj.get(), &type);
-    std::string name = utf8(obj.get(), lib3mf_object_getnameutf8);
-    if (name.empty()) {
-      const auto p = pkg->prusa.find(id);
-      name = p != pkg->prusa.end() && !p->second.name.empty() ? p->second.name : stem;
-    }
-    const std::string where = fmt::format("{}, object '{}'", file, name);
-    if (type != MODELOBJECTTYPE_MODEL) {
-      report.warn("3mf-ignored", where, "not a model object (a support or surface object): left out");
-      continue;
-    }
-    MODELTRANSFORM m{};
-    Eigen::Affine3d t = Eigen::Affine3d::Identity();
-    BOOL has_t = false;
-    if (lib3mf_builditem_hasobjecttransform(item.get(), &has_t) == LIB3MF_OK && has_t &&
-        lib3mf_builditem_getobjecttransform(item.get(), &m) == LIB3MF_OK)
-      t = to_affine(m);
-    if (!(std::fabs(t.linear().determinant()) > kMinDeterminant))
-      return Error{where, fmt::format("build item {} has a transform that flattens the object (determinant {:g}): "
-                                      "it has no volume to print; fix the item's transform",
-                                      number, t.linear().determinant())};
-    Object o;
-    o.name = name;
-    o.file = file;
-    o.placed = true;
-    o.copy = instances[id]++;
-    o.transform = to_mm * t * to_mm.inverse();
-    if (auto it = first.find(id); it != first.end()) {
-      o.mesh = objects[it->second].mesh;
-    } else {
-      Collector c(file, *pkg, report);
-      if (Status s = c.collect(obj.get(), to_mm, 0); !s) return s.error();
-      if (c.corners().empty()) {
-        report.warn("3mf-empty", where, "the object has no triangles to print: left out");
-        continue;
-      }
-      auto mesh = geo::weld_corners(c.corners(), where, report);
-      if (!mesh) return mesh.error();
-      o.mesh = std::move(*mesh);
-      o.mesh.name = name;
-      first[id] = objects.size();
-    }
-    objects.push_back(std::move(o));
+    Handle item;
+    if (lib3mf_builditemiterator_getcurrent(items.get(), item.out()) != LIB3MF_OK)
+      return Error{file, fmt::format("build item {}: {}", number + 1, lib3mf_message(items.get()))};
+    if (Status s = build.add(item.get(), ++number); !s) return s.error();
   }
-  if (objects.empty() && number == 0)
+  if (build.objects().empty() && number == 0)
     if (Status s = threemf::check_model_xml(input, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file); !s)
       return s.error();
-  if (objects.empty())
+  if (build.objects().empty())
     return Error{file, number == 0 ? "the 3MF has no build items: nothing to print"
                                    : "no build item of the 3MF has anything to print"};
-  return objects;
+  return std::move(build.objects());
 }
 
 }  // namespace tranche::plate

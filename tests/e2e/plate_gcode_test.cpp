@@ -195,6 +195,21 @@ TEST_CASE("plate e2e: OBJ input, copies and a turn") {
   }
 }
 
+TEST_CASE("plate e2e: the content decides: a 3MF named .svg is a plate, not a drawing") {
+  test::TempDir dir("plate-named");
+  const std::string file = (dir / "looks-like-a-drawing.svg").string();
+  REQUIRE(plate::write_3mf(file, {object("cube", geo::box({10, 10, 3}), Eigen::Affine3d(Eigen::Translation3d(50, 50, 0)))})
+              .ok());
+  pipeline::SliceOptions o = options(dir);
+  o.model = file;
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const auto objects = parts(test::read_gcode((dir / "plate.gcode").string()), 2);
+  REQUIRE(objects.size() == 1);
+  CHECK(objects[0].w() == doctest::Approx(10).epsilon(0.05));
+}
+
 TEST_CASE("command line: every spelling of tranche slice, old and new") {
   auto parse = [](const std::string& args) { return app::parse_slice_args(words(args), false); };
   auto a = parse("m.stl -o out.gcode --rules a.rules --rules b.rules --printer ender3 --material petg --stdlib s "

@@ -68,6 +68,8 @@ TEST_CASE("detect: the content decides, not the name") {
   CHECK(tranche::plate::detect_format(package(model("", ""))).format == Format::ThreeMf);
   CHECK(tranche::plate::detect_format(cube_obj()).format == Format::Obj);
   CHECK(tranche::plate::detect_format("solid x\nendsolid x\n").format == Format::Stl);
+  CHECK(tranche::plate::detect_format("solid x\nendsolid x\n").sure);
+  CHECK_FALSE(tranche::plate::detect_format("just some words\n").sure);
   CHECK(tranche::plate::detect_format("<?xml version=\"1.0\"?>\n<svg width=\"1\"/>").format == Format::Svg);
   CHECK(tranche::plate::detect_format("\x89PNG\r\n\x1a\n....").what == "a PNG image, not a model");
   CHECK(has(tranche::plate::detect_format(";FLAVOR:Marlin\nG28\nG1 X10\n").what, "G-code"));
