@@ -1,12 +1,42 @@
 #include "apps/slice_command.h"
 
+#include <filesystem>
+#include <fstream>
+
+#include "apps/plate_adapter.h"
 #include "compiler/load_rules.h"
+#include "geometry/plate/detect.h"
+#include "geometry/plate/plate.h"
 #include "runtime/context/overrides.h"
 
 namespace tranche::app {
+namespace {
 
-Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
-  if (Status s = pipeline::check_options(options); !s) return s.error();
+// A drawing for the SVG path: named .svg (as the pipeline decides) and not a mesh inside, since
+// the content decides (a 3MF named .svg is a plate).
+bool is_svg(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".svg") return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::error_code ec;
+  const plate::Detected d = plate::detect_format(head, std::filesystem::file_size(path, ec));
+  const bool mesh = d.sure && (d.format == plate::Format::ThreeMf || d.format == plate::Format::Obj ||
+                               d.format == plate::Format::Stl);
+  return ec || !mesh;
+}
+
+// Options of the plate other than the files, for the SVG check.
+bool transforms_given(const plate::PlateOptions& p) {
+  return !p.copies.empty() || p.lay_flat || !p.rotate.empty() || !p.rotate_x.empty() || !p.rotate_y.empty() ||
+         !p.scale.empty() || p.scale_to_fit || !p.move.empty() || !p.center.empty() ||
+         p.arrange != plate::ArrangeMode::Auto;
+}
+
+Result<std::shared_ptr<const vm::RuleSet>> compile(const pipeline::SliceOptions& options, Report& report) {
   compiler::RulesInput in;
   in.profile = options.profile;
   in.printer = options.printer;
@@ -17,9 +47,39 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Repo
   // rules: the compiler knows (and says "did you mean" when it is neither).
   for (const auto& [k, v] : options.sets)
     if (!ctx::is_plain_override(k, v)) in.expressions.emplace_back(k, v);
-  auto rules = compiler::load_rules(in, report);
+  return compiler::load_rules(in, report);
+}
+
+}  // namespace
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
+  plate::PlateOptions plate;
+  plate.files = {options.model};
+  return slice(options, plate, report);
+}
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
+                                     Report& report) {
+  if (Status s = pipeline::check_options(options); !s) return s.error();
+  if (plate.files.empty()) return Error{"", "no model given"};
+  bool svg = false;
+  for (const auto& f : plate.files) svg |= is_svg(f);
+  if (svg && plate.files.size() > 1)
+    return Error{"", "an SVG drawing is sliced on its own: give it as the only model"};
+  if (svg && transforms_given(plate))
+    return Error{plate.files[0],
+                 "--copies, --scale, --rotate, --lay-flat, --move, --center and --arrange apply to meshes (STL, 3MF, "
+                 "OBJ), not to an SVG drawing"};
+  auto rules = compile(options, report);
   if (!rules) return rules.error();
-  return pipeline::run_slice(options, rules->get(), report);
+  pipeline::SliceOptions o = options;
+  o.model = plate.files[0];
+  if (svg) return pipeline::run_slice(o, rules->get(), report);
+  auto bed = bed_from_profile(options, rules->get());
+  if (!bed) return bed.error();
+  auto p = plate::build_plate(plate, *bed, report);
+  if (!p) return p.error();
+  return slice_plate(o, *p, plate.files, rules->get(), report);
 }
 
 }  // namespace tranche::app

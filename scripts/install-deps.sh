@@ -12,6 +12,7 @@ PKGS=(
   libpugixml-dev
   zlib1g-dev libpng-dev
   nlohmann-json3-dev
+  lib3mf-dev libtinyobjloader-dev libcli11-dev
   liblua5.4-dev
   clang libclang-rt-dev
   python3-shapely python3-numpy python3-matplotlib

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target in BUILD/fuzz for SECONDS each, starting from its seed corpus
-# (fuzz/corpus/<name>/). Fails if a target crashes, leaks, times out on one input or runs out of memory.
+# (fuzz/corpus/<name>/, or generated: fuzz/make_3mf_corpus.py). Fails if a target crashes, leaks,
+# times out on one input or runs out of memory.
 set -euo pipefail
 build=${1:-build-fuzz}
 seconds=${2:-30}
@@ -8,6 +9,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # Absolute, because each target runs from its own scratch directory.
 build=$(cd "$build" 2>/dev/null && pwd) || { echo "fuzz: no build directory ${1:-build-fuzz} (run make fuzz-build)"; exit 1; }
 status=0
+# Leaks in third-party libraries (lib3mf's libzip) are not ours to fix: fuzz/lsan.supp.
+export LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 shopt -s nullglob
 for bin in "$build"/fuzz/fuzz_*; do
   [[ -x "$bin" && -f "$bin" ]] || continue
@@ -17,6 +20,8 @@ for bin in "$build"/fuzz/fuzz_*; do
   [[ $name == bundle ]] && seeds="$root/fuzz/corpus/rules"  # rule texts, compiled by the target
   mkdir -p "$work/corpus"
   [[ -d "$seeds" ]] && cp -r "$seeds"/. "$work/corpus/" 2>/dev/null || true
+  # 3MF seeds are generated (no third-party file is committed).
+  [[ $name == 3mf ]] && python3 "$root/fuzz/make_3mf_corpus.py" "$work/corpus"
   echo "fuzz: $name for ${seconds}s"
   if ! (cd "$work" && "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
         -print_final_stats=0 corpus >"$work/log" 2>&1); then

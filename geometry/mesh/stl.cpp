@@ -1,21 +1,17 @@
 #include "geometry/mesh/stl.h"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <bit>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 #include <memory>
 #include <new>
-#include <system_error>
 
 #include "base/output_file.h"
+#include "geometry/mesh/file_bytes.h"
 #include "geometry/mesh/stl_parse.h"
 #include "geometry/mesh/weld.h"
 
@@ -30,60 +26,6 @@ std::string at_triangle(const std::string& file, uint64_t index0) {
 }  // namespace stl
 
 namespace {
-
-constexpr uint64_t kPipeLimit = uint64_t{1} << 30;  // bytes read from a pipe or device before giving up
-
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
-
-struct Bytes {
-  std::unique_ptr<char[]> data;
-  size_t size = 0;
-  std::string_view view() const { return {data.get(), size}; }
-};
-
-// One read of the whole file (a pipe is read in chunks, up to kPipeLimit).
-Result<Bytes> read_all(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    const int err = errno;
-    return Error{path, fmt::format("cannot open the model: {}{}", errno_text(err),
-                                   err == ENOENT ? " — check the path" : "")};
-  }
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) return Error{path, "cannot read the model: " + errno_text(errno)};
-  if (S_ISDIR(st.st_mode)) return Error{path, "is a directory, not an STL file"};
-  const bool regular = S_ISREG(st.st_mode);
-  Bytes b;
-  size_t capacity = regular ? static_cast<size_t>(st.st_size) : size_t{1} << 20;
-  b.data.reset(new (std::nothrow) char[std::max<size_t>(capacity, 1)]);
-  if (!b.data) return Error{path, fmt::format("not enough memory to read the model ({} MB)", capacity >> 20)};
-  for (;;) {
-    if (b.size == capacity) {
-      if (regular) break;  // a file that grows while we read it is taken at its size when opened
-      if (capacity >= kPipeLimit) {
-        return Error{path, fmt::format("more than {} MiB from a pipe or device; save the model to a file",
-                                       kPipeLimit >> 20)};
-      }
-      auto bigger = std::unique_ptr<char[]>(new (std::nothrow) char[capacity * 2]);
-      if (!bigger) return Error{path, "not enough memory to read the model"};
-      std::memcpy(bigger.get(), b.data.get(), b.size);
-      b.data = std::move(bigger);
-      capacity *= 2;
-    }
-    const ssize_t n = ::read(fd, b.data.get() + b.size, capacity - b.size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return Error{path, "cannot read the model: " + errno_text(errno)};
-    }
-    if (n == 0) break;
-    b.size += static_cast<size_t>(n);
-  }
-  return b;
-}
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
@@ -243,7 +185,7 @@ Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& 
 }
 
 Result<Mesh> load_stl(const std::string& path, Report& report) {
-  Result<Bytes> bytes = read_all(path);
+  Result<FileBytes> bytes = read_file_bytes(path, "an STL file");
   if (!bytes) return bytes.error();
   return parse_stl(bytes->view(), path, report);
 }

@@ -1,6 +1,9 @@
 #include "geometry/mesh/weld.h"
 
+#include <fmt/format.h>
+
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 namespace tranche::geo {
@@ -102,6 +105,34 @@ void Welder::finish(Mesh& mesh) {
   batch_hashes_ = {};
   batch_ids_ = {};
   dropped_ = 0;
+}
+
+Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& where, Report& report) {
+  const size_t n = corners.size() / 9;
+  for (size_t i = 0; i < 9 * n; ++i)
+    if (!std::isfinite(corners[i]))
+      return Error{where, fmt::format("triangle {} has a coordinate that is not a finite number ({}); repair the "
+                                      "model, or check the scale it was given",
+                                      i / 9 + 1, corners[i])};
+  if (n > Welder::kMaxTriangles) return Error{where, fmt::format("{} triangles are more than Tranche can load", n)};
+  Welder welder(n);
+  std::vector<uint8_t> dropped(n);
+  // Batches of a few thousand triangles, as the welder prefers.
+  for (size_t base = 0; base < n; base += 4096)
+    welder.add(corners.data() + 9 * base, std::min<size_t>(4096, n - base), dropped.data() + base);
+  size_t degenerate = 0;
+  for (uint8_t d : dropped) degenerate += d;
+  if (degenerate == n)
+    return Error{where, fmt::format("all {} triangles are degenerate (two or three corners at the same point): the "
+                                    "model has no surface",
+                                    n)};
+  if (degenerate)
+    report.warn("mesh-degenerate", where,
+                fmt::format("dropped {} degenerate triangle{} of {} (two corners at the same point)", degenerate,
+                            degenerate == 1 ? "" : "s", n));
+  Mesh mesh;
+  welder.finish(mesh);
+  return mesh;
 }
 
 }  // namespace tranche::geo

@@ -4,8 +4,11 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "base/report.h"
+#include "base/result.h"
 #include "geometry/mesh/mesh.h"
 
 namespace tranche::geo {
@@ -39,5 +42,10 @@ class Welder {
   uint64_t mask_ = 0;
   uint64_t dropped_ = 0;
 };
+
+// The whole welding of loaders that gather float corners (3MF, OBJ): 9 floats per triangle, mm.
+// Errors: a coordinate that is not finite, too many triangles, only degenerate triangles; the
+// degenerate ones dropped are a warning (code "mesh-degenerate") at `where`.
+Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& where, Report& report);
 
 }  // namespace tranche::geo

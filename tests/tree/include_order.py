@@ -23,6 +23,7 @@ COMPONENTS = [
     ("lsp", ["compiler"]),
     ("geometry/core", ["base"]),
     ("geometry/mesh", ["geometry/core"]),
+    ("geometry/plate", ["geometry/mesh"]),
     ("geometry/slice", ["geometry/mesh"]),
     ("geometry/polygon", ["geometry/core"]),
     ("geometry/preview", ["geometry/core", "runtime/schema"]),
@@ -33,8 +34,9 @@ COMPONENTS = [
     ("geometry/plan", ["geometry/setup"]),
     ("geometry/gcode", ["geometry/plan"]),
     ("geometry/export", ["geometry/plan", "geometry/io"]),
-    ("geometry/pipeline", ["geometry/export", "geometry/gcode", "geometry/fillangle", "geometry/preview", "runtime/vm"]),
-    ("apps", ["geometry/pipeline", "compiler", "lsp"]),
+    ("geometry/pipeline", ["geometry/plate", "geometry/export", "geometry/gcode", "geometry/fillangle", "geometry/preview",
+                           "runtime/vm"]),
+    ("apps", ["geometry/pipeline", "geometry/plate", "compiler", "lsp"]),
 ]
 CODE_ROOTS = ("base", "runtime", "grammar", "compiler", "lsp", "geometry", "apps")
 

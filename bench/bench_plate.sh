@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The plate: load time of a 3MF of 10 objects and 2 000 000 triangles against the same meshes as
+# 10 STL files (goal: within 1.5×), and the arrangement of 50 objects on a 250 × 210 mm bed
+# (limit: 1 s) with its packing density against PrusaSlicer's --arrange on the same objects
+# (goal: within 10%; skipped without prusa-slicer, scripts/install-deps.sh --with-peers).
+#   bench/bench_plate.sh [BUILD_DIR]        BENCH_RUNS=N: best of N loads (default 3)
+set -euo pipefail
+build=${1:-build}
+bench="$build/bench/plate_bench"
+if [[ ! -x "$bench" ]]; then
+  cmake --build "$build" --target plate_bench >/dev/null
+fi
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/tranche-bench-XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+
+"$bench" load "$tmp/load" "${BENCH_RUNS:-3}"
+echo
+"$bench" write-objects "$tmp/objects" >/dev/null
+peer=""
+if command -v prusa-slicer >/dev/null 2>&1; then
+  # --merge arranges the models (min_object_distance 6 mm) and exports them as one 3MF plate.
+  start=$(date +%s%N)
+  if prusa-slicer --export-3mf --merge --bed-shape 0x0,250x0,250x210,0x210 -o "$tmp/prusa.3mf" \
+       "$tmp"/objects/obj*.stl >"$tmp/prusa.log" 2>&1; then
+    peer="$tmp/prusa.3mf"
+    echo "(prusa-slicer's whole run, loading and export included: $((($(date +%s%N) - start) / 1000000)) ms)"
+  else
+    echo "prusa-slicer failed:"; tail -5 "$tmp/prusa.log"
+  fi
+else
+  echo "(prusa-slicer not installed: scripts/install-deps.sh --with-peers; density not compared)"
+fi
+"$bench" arrange "$tmp/objects" $peer

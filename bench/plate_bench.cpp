@@ -1,0 +1,213 @@
+// plate_bench: the plate's loaders and arrangement (bench_plate.sh prints the table).
+//   plate_bench load DIR [RUNS]        10 objects, 2 000 000 triangles: the same meshes as 10
+//                                      STL files and as one 3MF; load time of each (best of
+//                                      RUNS, default 3), their ratio against the goal (1.5), and
+//                                      the time only inflating the 3MF's model part takes
+//   plate_bench write-objects DIR      the arrangement's 50 objects as DIR/obj00.stl ... obj49.stl
+//   plate_bench arrange DIR [PEER.3mf] arranges them on a 250 × 210 mm bed, 6 mm apart: time
+//                                      (best of 3) and packing density (hull areas over the pile's
+//                                      bounding box), and the same density of PEER.3mf (the same
+//                                      objects as PrusaSlicer arranged them)
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "geometry/mesh/file_bytes.h"
+#include "geometry/mesh/primitives.h"
+#include "geometry/mesh/stl.h"
+#include "geometry/plate/model_file.h"
+#include "geometry/plate/plate.h"
+#include "geometry/plate/threemf_write.h"
+#include "geometry/plate/transform.h"
+#include "geometry/plate/zip.h"
+
+using namespace tranche;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+int fail(const std::string& msg) {
+  std::fprintf(stderr, "plate_bench: %s\n", msg.c_str());
+  return 1;
+}
+
+template <class F>
+double best_of(int runs, F f) {
+  double best = 1e300;
+  for (int i = 0; i < runs; ++i) {
+    const auto t = Clock::now();
+    if (!f()) return -1;
+    best = std::min(best, since(t));
+  }
+  return best;
+}
+
+// Ten tori of 200 000 triangles each, of different sizes, side by side.
+std::vector<plate::Object> load_set() {
+  std::vector<plate::Object> out;
+  for (int i = 0; i < 10; ++i) {
+    plate::Object o;
+    o.name = fmt::format("torus{}", i);
+    o.mesh = geo::torus(15 + i, 4 + 0.3 * i, 500, 200);
+    o.transform = Eigen::Translation3d(30 + 62 * (i % 5), 30 + 62 * (i / 5), 4 + 0.3 * i);  // apart
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+int load(const std::string& dir, int runs) {
+  fs::create_directories(dir);
+  const auto set = load_set();
+  std::vector<std::string> stls;
+  size_t triangles = 0, stl_bytes = 0;
+  for (const auto& o : set) {
+    stls.push_back(fmt::format("{}/{}.stl", dir, o.name));
+    if (auto s = geo::write_stl_binary(stls.back(), plate::world_mesh(o)); !s) return fail(s.error().to_string());
+    triangles += o.mesh.triangles.size();
+    stl_bytes += fs::file_size(stls.back());
+  }
+  const std::string three = dir + "/ten.3mf";
+  if (auto s = plate::write_3mf(three, set); !s) return fail(s.error().to_string());
+  Report report;
+  const double stl_s = best_of(runs, [&] {
+    for (const auto& f : stls)
+      if (!plate::load_model_file(f, report)) return false;
+    return true;
+  });
+  size_t loaded = 0;
+  const double three_s = best_of(runs, [&] {
+    auto objects = plate::load_model_file(three, report);
+    loaded = objects ? objects->size() : 0;
+    return objects.ok();
+  });
+  if (stl_s < 0 || three_s < 0 || loaded != 10) return fail("a load failed");
+  auto bytes = geo::read_file_bytes(three, "a 3MF file");
+  if (!bytes) return fail(bytes.error().to_string());
+  size_t model_bytes = 0;
+  const double inflate_s = best_of(runs, [&] {
+    auto zip = plate::ZipArchive::open(bytes->view(), three);
+    if (!zip) return false;
+    auto model = zip->read(*zip->find("3D/3dmodel.model"));
+    model_bytes = model ? model->size() : 0;
+    return model.ok();
+  });
+  fmt::print("{:<34} {:>10} {:>9} {:>9} {:>8}\n", "input (10 objects)", "triangles", "file MB", "load s", "vs STL");
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8}\n", "10 binary STL files", triangles, stl_bytes / 1e6, stl_s, "1.00");
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f}   goal 1.5: {}\n", "one 3MF (lib3mf)", triangles,
+             fs::file_size(three) / 1e6, three_s, three_s / stl_s, three_s / stl_s <= 1.5 ? "met" : "MISSED");
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f}   (zlib alone: the floor of any 3MF reader)\n",
+             fmt::format("  inflating its model part only"), "", model_bytes / 1e6, inflate_s, inflate_s / stl_s);
+  return 0;
+}
+
+// 50 objects of 8 kinds and random sizes (a fixed seed), some turned: what a plate of parts is.
+std::vector<geo::Mesh> arrange_set() {
+  std::mt19937 rng(50);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<geo::Mesh> out;
+  for (int i = 0; i < 50; ++i) {
+    const double a = 10 + 22 * u(rng), b = 8 + 20 * u(rng), h = 3 + 10 * u(rng);
+    geo::Mesh m;
+    switch (i % 8) {
+      case 0: m = geo::box({a, b, h}); break;
+      case 1: m = geo::cylinder(a / 2, h, 48); break;
+      case 2: m = geo::cone(a / 2, a / 6, h, 48); break;
+      case 3: m = geo::torus(a / 2, std::min(a, b) / 8, 64, 16); break;
+      case 4:  // an L
+        m = geo::box({a, b / 3, h});
+        geo::append(m, geo::box({b / 3, b, h}, {0, b / 3, 0}));
+        break;
+      case 5: m = geo::plate_with_holes(a, b, 3, 2, 2, std::min(a, b) / 8, 16); break;
+      case 6: m = geo::sphere(std::min(a, b) / 2, 32, 16); break;
+      default: m = geo::box({a * 1.5, b / 2, h}); break;
+    }
+    if (i % 3 == 1) {  // turned at an angle, so that hulls are not all square to the bed
+      plate::Object o;
+      o.mesh = m;
+      o.transform = Eigen::AngleAxisd(u(rng) * M_PI, Eigen::Vector3d::UnitZ());
+      m = plate::world_mesh(o);
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+int write_objects(const std::string& dir) {
+  fs::create_directories(dir);
+  const auto set = arrange_set();
+  for (size_t i = 0; i < set.size(); ++i)
+    if (auto s = geo::write_stl_binary(fmt::format("{}/obj{:02}.stl", dir, i), set[i]); !s)
+      return fail(s.error().to_string());
+  std::printf("wrote %zu objects to %s\n", set.size(), dir.c_str());
+  return 0;
+}
+
+// Hull areas over the area of the pile's bounding box.
+double density(const plate::Plate& p, double* w = nullptr, double* h = nullptr) {
+  double hulls = 0;
+  plate::Box2 pile;
+  for (const auto& o : p.objects) {
+    const plate::Convex c = plate::footprint(o);
+    hulls += plate::area(c);
+    pile.add(plate::bounds(c));
+  }
+  if (w) *w = pile.size().x();
+  if (h) *h = pile.size().y();
+  return hulls / (pile.size().x() * pile.size().y());
+}
+
+int arrange(const std::string& dir, const std::string& peer) {
+  plate::PlateOptions opt;
+  for (int i = 0; i < 50; ++i) opt.files.push_back(fmt::format("{}/obj{:02}.stl", dir, i));
+  plate::Bed bed;
+  bed.size_x_mm = 250;
+  bed.size_y_mm = 210;
+  Report report;
+  auto loaded = plate::load_plate(opt.files, report);
+  if (!loaded) return fail(loaded.error().to_string());
+  if (auto s = plate::apply_transforms(*loaded, opt, bed, report); !s) return fail(s.error().to_string());
+  plate::Plate arranged;
+  const double t = best_of(3, [&] {
+    arranged = *loaded;
+    return plate::place_objects(arranged, opt, bed).ok();
+  });
+  if (t < 0) return fail("the arrangement failed");
+  if (auto s = plate::check_plate(arranged, bed, false, report); !s) return fail(s.error().to_string());
+  double w = 0, h = 0;
+  const double ours = density(arranged, &w, &h);
+  fmt::print("{:<34} {:>8} {:>9} {:>14} {:>8}\n", "arrangement of 50 objects", "time s", "density", "pile mm",
+             "vs peer");
+  fmt::print("{:<34} {:>8.3f} {:>9.3f} {:>14} {:>8}   limit 1 s: {}\n", "tranche (convex hulls, 6 mm)", t, ours,
+             fmt::format("{:.0f} × {:.0f}", w, h), "", t < 1 ? "met" : "MISSED");
+  if (peer.empty()) return 0;
+  auto objects = plate::load_model_file(peer, report);
+  if (!objects) return fail(objects.error().to_string());
+  plate::Plate theirs{std::move(*objects)};
+  if (theirs.objects.size() != 50) return fail(fmt::format("{} has {} objects, not 50", peer, theirs.objects.size()));
+  Report peer_report;
+  (void)plate::check_plate(theirs, plate::Bed{.size_x_mm = 1e4, .size_y_mm = 1e4, .origin_x_mm = -5e3, .origin_y_mm = -5e3},
+                           true, peer_report);
+  if (peer_report.count("plate-overlap") > 0) return fail(fmt::format("{}: objects overlap", peer));
+  const double prusa = density(theirs, &w, &h);
+  fmt::print("{:<34} {:>8} {:>9.3f} {:>14} {:>8.2f}   goal within 10%: {}\n", "PrusaSlicer --arrange (6 mm)", "",
+             prusa, fmt::format("{:.0f} × {:.0f}", w, h), ours / prusa, ours >= 0.9 * prusa ? "met" : "MISSED");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string cmd = argc > 1 ? argv[1] : "";
+  if (cmd == "load" && argc >= 3) return load(argv[2], argc > 3 ? std::atoi(argv[3]) : 3);
+  if (cmd == "write-objects" && argc == 3) return write_objects(argv[2]);
+  if (cmd == "arrange" && argc >= 3) return arrange(argv[2], argc > 3 ? argv[3] : "");
+  std::fprintf(stderr, "usage: plate_bench load DIR [RUNS] | write-objects DIR | arrange DIR [PEER.3mf]\n");
+  return 2;
+}

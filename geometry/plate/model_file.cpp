@@ -1,0 +1,54 @@
+#include "geometry/plate/model_file.h"
+
+#include <filesystem>
+#include <new>
+
+#include "geometry/mesh/file_bytes.h"
+#include "geometry/mesh/stl.h"
+#include "geometry/plate/detect.h"
+#include "geometry/plate/obj.h"
+#include "geometry/plate/threemf.h"
+
+namespace tranche::plate {
+namespace {
+
+Result<std::vector<Object>> parse(std::string_view bytes, const std::string& path, Report& report) {
+  const Detected d = detect_format(bytes);
+  switch (d.format) {
+    case Format::ThreeMf: return parse_3mf(bytes, path, report);
+    case Format::Obj: return parse_obj(bytes, path, report);
+    case Format::Svg:
+      return Error{path, "this is an SVG drawing, not a mesh: slice it on its own, from a file named .svg"};
+    case Format::Other: return Error{path, "this is " + d.what};
+    case Format::Stl: break;
+  }
+  auto mesh = geo::parse_stl(bytes, path, report);
+  if (!mesh) return mesh.error();
+  Object o;
+  o.file = path;
+  o.name = std::filesystem::path(path).stem().string();
+  o.mesh = std::move(*mesh);
+  std::vector<Object> out;
+  out.push_back(std::move(o));
+  return out;
+}
+
+}  // namespace
+
+Result<std::vector<Object>> parse_model_file(std::string_view bytes, const std::string& path, Report& report) {
+  try {
+    return parse(bytes, path, report);
+  } catch (const std::bad_alloc&) {
+    return Error{path, "not enough memory to load the model; close other programs or simplify the model"};
+  }
+}
+
+Result<std::vector<Object>> load_model_file(const std::string& path, Report& report) {
+  auto bytes = geo::read_file_bytes(path, "a model file");
+  if (!bytes) return bytes.error();
+  if (bytes->size == 0)
+    return Error{path, "the file is empty (0 bytes); export the model again or check that it was copied completely"};
+  return parse_model_file(bytes->view(), path, report);
+}
+
+}  // namespace tranche::plate

@@ -1,0 +1,232 @@
+#include "geometry/plate/zip.h"
+
+#include <fmt/format.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+namespace tranche::plate {
+namespace {
+
+constexpr uint32_t kLocalSig = 0x04034b50, kCentralSig = 0x02014b50, kEndSig = 0x06054b50;
+constexpr uint32_t kEnd64Sig = 0x06064b50, kLocator64Sig = 0x07064b50;
+constexpr size_t kEndBytes = 22, kLocatorBytes = 20, kEnd64Bytes = 56, kCentralBytes = 46, kLocalBytes = 30;
+
+uint64_t le(std::string_view b, size_t at, int n) {
+  uint64_t v = 0;
+  for (int i = n - 1; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(b[at + i]);
+  return v;
+}
+
+void put(std::string& out, uint64_t v, int n) {
+  for (int i = 0; i < n; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+
+bool iequal(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  return true;
+}
+
+// The zip64 extra field (id 1) holds, in order, the fields whose 32-bit value is all ones.
+bool apply_zip64(std::string_view extra, ZipEntry& e, bool usize64, bool csize64, bool offset64) {
+  for (size_t at = 0; at + 4 <= extra.size();) {
+    const uint64_t id = le(extra, at, 2), len = le(extra, at + 2, 2);
+    if (at + 4 + len > extra.size()) return false;
+    if (id == 1) {
+      size_t p = at + 4;
+      const size_t end = p + len;
+      for (auto [wanted, field] : {std::pair{usize64, &e.size}, {csize64, &e.compressed}, {offset64, &e.local_offset}}) {
+        if (!wanted) continue;
+        if (p + 8 > end) return false;
+        *field = le(extra, p, 8);
+        p += 8;
+      }
+      return true;
+    }
+    at += 4 + len;
+  }
+  return !(usize64 || csize64 || offset64);
+}
+
+}  // namespace
+
+bool looks_like_zip(std::string_view bytes) {
+  return bytes.size() >= 4 && (le(bytes, 0, 4) == kLocalSig || (bytes.size() == kEndBytes && le(bytes, 0, 4) == kEndSig));
+}
+
+Result<ZipArchive> ZipArchive::open(std::string_view b, const std::string& file) {
+  const auto damaged = [&](const std::string& what) {
+    return Error{file, fmt::format("the ZIP archive is damaged or truncated ({}); download or export it again",
+                                   what)};
+  };
+  if (b.size() < kEndBytes) return damaged("too short for a ZIP archive");
+  // The end record: the last signature within the 64 KiB a comment may take.
+  size_t end = std::string_view::npos;
+  const size_t lowest = b.size() > kEndBytes + 0xffff ? b.size() - kEndBytes - 0xffff : 0;
+  for (size_t at = b.size() - kEndBytes + 1; at-- > lowest;) {
+    if (le(b, at, 4) == kEndSig && at + kEndBytes + le(b, at + 20, 2) == b.size()) {
+      end = at;
+      break;
+    }
+  }
+  if (end == std::string_view::npos) return damaged("no end-of-archive record");
+  uint64_t count = le(b, end + 10, 2), cd_size = le(b, end + 12, 4), cd_offset = le(b, end + 16, 4);
+  if ((count == 0xffff || cd_size == 0xffffffff || cd_offset == 0xffffffff) && end >= kLocatorBytes &&
+      le(b, end - kLocatorBytes, 4) == kLocator64Sig) {
+    const uint64_t at = le(b, end - kLocatorBytes + 8, 8);
+    if (at > b.size() || b.size() - at < kEnd64Bytes || le(b, at, 4) != kEnd64Sig)
+      return damaged("bad ZIP64 end record");
+    count = le(b, at + 32, 8);
+    cd_size = le(b, at + 40, 8);
+    cd_offset = le(b, at + 48, 8);
+  }
+  if (cd_offset > b.size() || cd_size > b.size() - cd_offset) return damaged("the directory lies outside the file");
+  if (count > cd_size / kCentralBytes) return damaged("the directory is shorter than its entry count");
+  ZipArchive z;
+  z.bytes_ = b;
+  z.file_ = file;
+  z.entries_.reserve(count);
+  size_t at = cd_offset;
+  const size_t cd_end = cd_offset + cd_size;
+  for (uint64_t i = 0; i < count; ++i) {
+    if (cd_end - at < kCentralBytes || le(b, at, 4) != kCentralSig) return damaged(fmt::format("entry {}", i + 1));
+    const size_t name_len = le(b, at + 28, 2), extra_len = le(b, at + 30, 2), comment_len = le(b, at + 32, 2);
+    if (cd_end - at - kCentralBytes < name_len + extra_len + comment_len)
+      return damaged(fmt::format("entry {}", i + 1));
+    ZipEntry e;
+    e.flags = static_cast<uint16_t>(le(b, at + 8, 2));
+    e.method = static_cast<uint16_t>(le(b, at + 10, 2));
+    e.crc = static_cast<uint32_t>(le(b, at + 16, 4));
+    e.compressed = le(b, at + 20, 4);
+    e.size = le(b, at + 24, 4);
+    e.local_offset = le(b, at + 42, 4);
+    e.name = std::string(b.substr(at + kCentralBytes, name_len));
+    if (!apply_zip64(b.substr(at + kCentralBytes + name_len, extra_len), e, e.size == 0xffffffff,
+                     e.compressed == 0xffffffff, e.local_offset == 0xffffffff))
+      return damaged(fmt::format("entry '{}'", e.name));
+    while (!e.name.empty() && e.name.front() == '/') e.name.erase(0, 1);
+    z.entries_.push_back(std::move(e));
+    at += kCentralBytes + name_len + extra_len + comment_len;
+  }
+  return z;
+}
+
+const ZipEntry* ZipArchive::find(std::string_view name) const {
+  while (!name.empty() && name.front() == '/') name.remove_prefix(1);
+  for (const auto& e : entries_)
+    if (iequal(e.name, name)) return &e;
+  return nullptr;
+}
+
+Result<std::string> ZipArchive::read(const ZipEntry& e, uint64_t limit) const {
+  const std::string where = file_ + ", " + e.name;
+  const auto damaged = [&](const std::string& what) {
+    return Error{where, fmt::format("the ZIP entry is damaged or truncated ({}); download or export the file again",
+                                    what)};
+  };
+  if (e.flags & 1) return Error{where, "the entry is encrypted; save the file again without a password"};
+  if (e.method != 0 && e.method != 8)
+    return Error{where, fmt::format("compression method {} is not supported (only stored and deflated)", e.method)};
+  if (e.size > limit) return Error{where, fmt::format("the entry is too large ({} MB)", e.size >> 20)};
+  const auto& b = bytes_;
+  if (e.local_offset > b.size() || b.size() - e.local_offset < kLocalBytes || le(b, e.local_offset, 4) != kLocalSig)
+    return damaged("no local header");
+  const uint64_t data = e.local_offset + kLocalBytes + le(b, e.local_offset + 26, 2) + le(b, e.local_offset + 28, 2);
+  if (data > b.size() || e.compressed > b.size() - data) return damaged("the data runs past the end of the file");
+  const std::string_view in = b.substr(data, e.compressed);
+  // Deflate cannot expand more than 1032 to 1: a larger claim is damage, not a reason to allocate.
+  if (e.method == 8 && e.size > 1032 * e.compressed + 64) return damaged("its size is impossible for its data");
+  std::string out;
+  if (e.method == 0) {
+    if (e.compressed != e.size) return damaged("stored sizes disagree");
+    out.assign(in);
+  } else {
+    out.resize(e.size);
+    z_stream zs{};
+    if (inflateInit2(&zs, -MAX_WBITS) != Z_OK) return damaged("zlib could not start");
+    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data()));
+    zs.next_out = reinterpret_cast<Bytef*>(out.data());
+    // zlib counts in 32-bit units: hand it at most 1 GiB of input and of output at a time.
+    constexpr uint64_t kStep = uint64_t{1} << 30;
+    uint64_t in_left = in.size(), out_left = e.size;
+    int rc = Z_OK;
+    while (rc == Z_OK) {
+      if (zs.avail_in == 0 && in_left > 0) {
+        zs.avail_in = static_cast<uInt>(std::min(kStep, in_left));
+        in_left -= zs.avail_in;
+      }
+      if (zs.avail_out == 0 && out_left > 0) {
+        zs.avail_out = static_cast<uInt>(std::min(kStep, out_left));
+        out_left -= zs.avail_out;
+      }
+      rc = inflate(&zs, Z_NO_FLUSH);  // Z_BUF_ERROR when no progress is possible: input or room ran out
+    }
+    const uint64_t made = e.size - out_left - zs.avail_out;
+    inflateEnd(&zs);
+    if (rc != Z_STREAM_END)
+      return damaged(rc == Z_DATA_ERROR ? "bad deflate data"
+                     : made == e.size   ? "the data is longer than the directory says"
+                                        : "the data ends early");
+    if (made != e.size) return damaged("its size disagrees with the directory");
+  }
+  uLong crc = crc32(0, nullptr, 0);
+  for (size_t at = 0; at < out.size(); at += 1u << 30) {
+    const size_t n = std::min<size_t>(out.size() - at, 1u << 30);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(out.data() + at), static_cast<uInt>(n));
+  }
+  if (crc != e.crc) return damaged("CRC mismatch");
+  return out;
+}
+
+std::string write_stored_zip(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::string out, directory;
+  for (const auto& file : files) {
+    const std::string& name = file.first;  // not a structured binding: the lambda below uses it
+    const std::string& content = file.second;
+    const uint32_t crc = static_cast<uint32_t>(
+        crc32(crc32(0, nullptr, 0), reinterpret_cast<const Bytef*>(content.data()), static_cast<uInt>(content.size())));
+    const uint64_t offset = out.size();
+    auto header = [&](std::string& to, bool central) {
+      put(to, central ? kCentralSig : kLocalSig, 4);
+      if (central) put(to, 20, 2);  // version made by
+      put(to, 20, 2);               // version needed
+      put(to, 0, 2);                // flags
+      put(to, 0, 2);                // stored
+      put(to, 0, 2);                // time
+      put(to, 0x21, 2);             // date: 1980-01-01
+      put(to, crc, 4);
+      put(to, content.size(), 4);
+      put(to, content.size(), 4);
+      put(to, name.size(), 2);
+      put(to, 0, 2);  // extra
+      if (central) {
+        put(to, 0, 2);  // comment
+        put(to, 0, 2);  // disk
+        put(to, 0, 2);  // internal attributes
+        put(to, 0, 4);  // external attributes
+        put(to, offset, 4);
+      }
+      to += name;
+    };
+    header(out, false);
+    out += content;
+    header(directory, true);
+  }
+  const uint64_t cd_offset = out.size();
+  out += directory;
+  put(out, kEndSig, 4);
+  put(out, 0, 4);  // disk numbers
+  put(out, files.size(), 2);
+  put(out, files.size(), 2);
+  put(out, directory.size(), 4);
+  put(out, cd_offset, 4);
+  put(out, 0, 2);  // comment
+  return out;
+}
+
+}  // namespace tranche::plate

@@ -1,0 +1,285 @@
+// End to end: plates of several models, 3MF and OBJ input, and the bed check, through
+// `tranche slice` (app::slice) to G-code; and the command line's spellings (parse_slice_args).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/slice_args.h"
+#include "apps/slice_command.h"
+#include "gcode_reader.h"
+#include "geometry/mesh/primitives.h"
+#include "geometry/mesh/stl.h"
+#include "geometry/plate/threemf_write.h"
+#include "tests/support/fixtures.h"
+
+using namespace tranche;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+struct Box {
+  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+  void add(double x, double y) {
+    min_x = std::min(min_x, x), max_x = std::max(max_x, x), min_y = std::min(min_y, y), max_y = std::max(max_y, y);
+  }
+  double w() const { return max_x - min_x; }
+  double h() const { return max_y - min_y; }
+};
+
+// The extrusions of one layer (skirt left out), grouped into the parts that lie more than
+// `gap` mm apart: one part per object.
+std::vector<Box> parts(const test::Gcode& g, int layer, double gap = 2) {
+  std::vector<std::pair<double, double>> p;
+  for (const auto& m : g.moves)
+    if (m.layer == layer && m.has_xy && m.de > 0 && m.type != "Skirt/Brim") {
+      const int n = 1 + static_cast<int>(std::hypot(m.x - m.x0, m.y - m.y0));  // a point every mm or less
+      for (int k = 0; k <= n; ++k) p.emplace_back(m.x0 + (m.x - m.x0) * k / n, m.y0 + (m.y - m.y0) * k / n);
+    }
+  std::vector<int> group(p.size(), -1);
+  int groups = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (group[i] >= 0) continue;
+    std::vector<size_t> stack = {i};
+    group[i] = groups;
+    while (!stack.empty()) {
+      const size_t a = stack.back();
+      stack.pop_back();
+      for (size_t b = 0; b < p.size(); ++b)
+        if (group[b] < 0 && std::hypot(p[a].first - p[b].first, p[a].second - p[b].second) <= gap) {
+          group[b] = groups;
+          stack.push_back(b);
+        }
+    }
+    ++groups;
+  }
+  std::vector<Box> out(groups);
+  for (size_t i = 0; i < p.size(); ++i) out[group[i]].add(p[i].first, p[i].second);
+  std::sort(out.begin(), out.end(), [](const Box& a, const Box& b) { return a.min_x < b.min_x; });
+  return out;
+}
+
+pipeline::SliceOptions options(const test::TempDir& dir) {
+  pipeline::SliceOptions o;
+  o.quiet = true;
+  o.output_gcode = (dir / "plate.gcode").string();
+  return o;
+}
+
+plate::Object object(const std::string& name, geo::Mesh mesh, const Eigen::Affine3d& t) {
+  plate::Object o;
+  o.name = name;
+  o.mesh = std::move(mesh);
+  o.transform = t;
+  return o;
+}
+
+std::vector<std::string> words(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("plate e2e: two models are arranged on the bed and print apart") {
+  test::TempDir dir("plate-two");
+  plate::PlateOptions p;
+  p.files = {(dir / "block.stl").string(), (dir / "pin.stl").string()};
+  REQUIRE(geo::write_stl_binary(p.files[0], geo::box({30, 20, 4})).ok());
+  REQUIRE(geo::write_stl_binary(p.files[1], geo::cylinder(8, 4, 48)).ok());
+  Report report;
+  auto r = app::slice(options(dir), p, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const test::Gcode g = test::read_gcode((dir / "plate.gcode").string());
+  const auto objects = parts(g, 3);
+  REQUIRE(objects.size() == 2);
+  const Box &a = objects[0], &b = objects[1];
+  // Apart by about the spacing (6 mm, less the widths of the outer walls).
+  const double gap = std::max({b.min_x - a.max_x, a.min_x - b.max_x, b.min_y - a.max_y, a.min_y - b.max_y});
+  CHECK(gap > 4.5);
+  for (const Box& o : objects) {
+    CHECK(o.min_x > 0);
+    CHECK(o.max_x < 200);
+    CHECK(o.min_y > 0);
+    CHECK(o.max_y < 200);
+  }
+  CHECK(((a.w() == doctest::Approx(30).epsilon(0.02) && b.w() == doctest::Approx(16).epsilon(0.03)) ||
+         (b.w() == doctest::Approx(30).epsilon(0.02) && a.w() == doctest::Approx(16).epsilon(0.03))));
+  // The adapter's temporary file shows in the header's model line only (until the pipeline takes a plate).
+  size_t traces = 0;
+  for (const auto& line : g.lines) traces += has(line, "tranche-plate-");
+  CHECK(traces <= 1);
+}
+
+TEST_CASE("plate e2e: a 3MF's build items are sliced where their transforms put them") {
+  test::TempDir dir("plate-3mf");
+  // An L: a bar 40 × 10 along x with a nub at its +x end towards +y. Turned a quarter
+  // counter-clockwise, the bar runs along y and the nub, at its +y end, points towards -x.
+  geo::Mesh l = geo::box({40, 10, 3});
+  geo::append(l, geo::box({10, 10, 3}, {30, 10, 0}));
+  Eigen::Affine3d turned = Eigen::Translation3d(60, 80, 0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
+  Eigen::Affine3d beside = Eigen::Affine3d(Eigen::Translation3d(120, 80, 0));
+  const std::string file = (dir / "job.3mf").string();
+  REQUIRE(plate::write_3mf(file, {object("L", l, turned), object("cube", geo::box({10, 10, 3}), beside)}).ok());
+  plate::PlateOptions p;
+  p.files = {file};
+  Report report;
+  auto r = app::slice(options(dir), p, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const auto objects = parts(test::read_gcode((dir / "plate.gcode").string()), 2);
+  REQUIRE(objects.size() == 2);
+  const Box &L = objects[0], &cube = objects[1];
+  CHECK(L.w() == doctest::Approx(20).epsilon(0.05));  // turned: 20 wide (bar and nub), 40 long in y
+  CHECK(L.h() == doctest::Approx(40).epsilon(0.03));
+  CHECK(cube.w() == doctest::Approx(10).epsilon(0.05));
+  // The turned L spans x 40..60 (the nub at 40..50 towards -x), y 80..120; the cube 120..130, 80..90:
+  // the pipeline centres the plate on the bed, the objects keep their places relative to each other.
+  CHECK(cube.min_x - L.min_x == doctest::Approx(80).epsilon(0.01));
+  CHECK(cube.min_y - L.min_y == doctest::Approx(0).epsilon(0.01));
+  // The nub: the L's extrusions in its top 10 mm reach 10 mm further towards -x than the bar below.
+  const test::Gcode g = test::read_gcode((dir / "plate.gcode").string());
+  double top_min_x = 1e300, low_min_x = 1e300;
+  for (const auto& m : g.moves) {
+    if (m.layer != 2 || m.de <= 0 || m.type == "Skirt/Brim" || m.x > L.max_x + 1) continue;
+    if (m.y > L.max_y - 9) top_min_x = std::min(top_min_x, m.x);
+    if (m.y < L.max_y - 11) low_min_x = std::min(low_min_x, m.x);
+  }
+  CHECK(low_min_x - top_min_x == doctest::Approx(10).epsilon(0.1));
+}
+
+TEST_CASE("plate e2e: a model larger than the bed is refused and nothing is written") {
+  test::TempDir dir("plate-off-bed");
+  const std::string model = (dir / "wide.stl").string();
+  REQUIRE(geo::write_stl_binary(model, geo::box({256, 40, 3})).ok());
+  pipeline::SliceOptions o = options(dir);
+  o.model = model;
+  o.export_svg = (dir / "layers.svg").string();
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_FALSE(r.ok());
+  CHECK(has(r.error().message, "'wide' is off the bed by 28.0 mm on the left and 28.0 mm on the right"));
+  CHECK(has(r.error().message, "--scale 0.78 fits"));
+  CHECK_FALSE(fs::exists(dir / "plate.gcode"));
+  CHECK_FALSE(fs::exists(dir / "layers.svg"));
+
+  plate::PlateOptions p;
+  p.files = {model};
+  p.allow_off_bed = true;
+  auto anyway = app::slice(o, p, report);
+  REQUIRE_MESSAGE(anyway.ok(), anyway.error().to_string());
+  CHECK(report.count("plate-off-bed") == 1);
+  CHECK(fs::exists(dir / "plate.gcode"));
+}
+
+TEST_CASE("plate e2e: OBJ input, copies and a turn") {
+  test::TempDir dir("plate-obj");
+  std::ofstream(dir / "bar.obj") << "v 0 0 0\nv 30 0 0\nv 30 8 0\nv 0 8 0\nv 0 0 3\nv 30 0 3\nv 30 8 3\nv 0 8 3\n"
+                                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+  plate::PlateOptions p;
+  p.files = {(dir / "bar.obj").string()};
+  p.copies = {{"", 3}};
+  p.rotate = {{"", 90}};
+  Report report;
+  auto r = app::slice(options(dir), p, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const auto objects = parts(test::read_gcode((dir / "plate.gcode").string()), 2);
+  REQUIRE(objects.size() == 3);
+  for (const Box& b : objects) {
+    CHECK(b.w() == doctest::Approx(8).epsilon(0.08));
+    CHECK(b.h() == doctest::Approx(30).epsilon(0.03));
+  }
+}
+
+TEST_CASE("plate e2e: the content decides: a 3MF named .svg is a plate, not a drawing") {
+  test::TempDir dir("plate-named");
+  const std::string file = (dir / "looks-like-a-drawing.svg").string();
+  REQUIRE(plate::write_3mf(file, {object("cube", geo::box({10, 10, 3}), Eigen::Affine3d(Eigen::Translation3d(50, 50, 0)))})
+              .ok());
+  pipeline::SliceOptions o = options(dir);
+  o.model = file;
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const auto objects = parts(test::read_gcode((dir / "plate.gcode").string()), 2);
+  REQUIRE(objects.size() == 1);
+  CHECK(objects[0].w() == doctest::Approx(10).epsilon(0.05));
+}
+
+TEST_CASE("command line: every spelling of tranche slice, old and new") {
+  auto parse = [](const std::string& args) { return app::parse_slice_args(words(args), false); };
+  auto a = parse("m.stl -o out.gcode --rules a.rules --rules b.rules --printer ender3 --material petg --stdlib s "
+                 "--set layer_height=0.15 --set speed=40 --export-svg l.svg --export-layers l.json --overlap boolean "
+                 "--fill-angle-script f.py --svg-layers 4 --svg-height 3 --svg-tolerance 0.02 --background black "
+                 "--strict -q");
+  REQUIRE_MESSAGE(a.ok(), a.error().to_string());
+  const auto& s = a->slice;
+  CHECK(s.model == "m.stl");
+  CHECK(s.output_gcode == "out.gcode");
+  CHECK(s.rules == std::vector<std::string>{"a.rules", "b.rules"});
+  CHECK(s.printer == "ender3");
+  CHECK(s.material == "petg");
+  CHECK(s.stdlib_dir == "s");
+  CHECK(s.sets.size() == 2);
+  CHECK(s.sets[1].second == "40");
+  CHECK(s.export_svg == "l.svg");
+  CHECK(s.export_layers == "l.json");
+  CHECK(s.overlap == pipeline::OverlapMode::Boolean);
+  CHECK(s.fill_angle_script == "f.py");
+  CHECK(s.svg_layers == 4);
+  CHECK(s.svg_height_mm == 3);
+  CHECK(s.svg_tolerance_mm == 0.02);
+  CHECK(s.background == "black");
+  CHECK(s.strict);
+  CHECK(s.quiet);
+  CHECK(parse("--output x.gcode --quiet m.stl")->slice.output_gcode == "x.gcode");
+  CHECK(parse("m.stl -o a -o b")->slice.output_gcode == "b");  // the last one wins, as before
+  CHECK(parse("-h")->help);
+
+  auto p = parse("a.stl b.3mf c.obj --copies 2 --scale lid=1,1,2 --scale 50% --rotate -90 --rotate-x lid=90 "
+                 "--rotate-y 2=45 --lay-flat --scale-to-fit --move -10,5 --center lid=100,80 --arrange --spacing 3 "
+                 "--allow-off-bed");
+  REQUIRE_MESSAGE(p.ok(), p.error().to_string());
+  const auto& q = p->plate;
+  CHECK(q.files == std::vector<std::string>{"a.stl", "b.3mf", "c.obj"});
+  CHECK(q.copies[0].value == 2);
+  CHECK(q.scale[0].selector == "lid");
+  CHECK(q.scale[0].value.z() == 2);
+  CHECK(q.scale[1].value.x() == 0.5);
+  CHECK(q.rotate[0].value == -90);
+  CHECK(q.rotate_y[0].selector == "2");
+  CHECK(q.move[0].value.x() == -10);
+  CHECK(q.center[0].selector == "lid");
+  CHECK(q.lay_flat);
+  CHECK(q.scale_to_fit);
+  CHECK(q.arrange == plate::ArrangeMode::Always);
+  CHECK(q.spacing_mm == 3);
+  CHECK(q.allow_off_bed);
+  CHECK(parse("a.stl --no-arrange")->plate.arrange == plate::ArrangeMode::Never);
+}
+
+TEST_CASE("command line: usage errors say what an option needs") {
+  auto error = [](const std::string& args) {
+    auto r = app::parse_slice_args(words(args), true);
+    REQUIRE_FALSE(r.ok());
+    return r.error().message;
+  };
+  CHECK(error("") == "missing MODEL");
+  CHECK(error("m.stl -o") == "--output needs a file name");
+  CHECK(error("m.stl --rules") == "--rules needs a file name");
+  CHECK(error("m.stl --bogus") == "unknown option '--bogus'");
+  CHECK(error("m.stl --set speed") == "--set needs KEY=VALUE, got 'speed'");
+  CHECK(error("m.stl --overlap sideways") == "--overlap must be additive, boolean or subtractive, not 'sideways'");
+  CHECK(error("m.stl --svg-layers 0") == "--svg-layers needs a positive number, not '0'");
+  CHECK(error("m.stl --svg-layers 2.5") == "--svg-layers needs a whole number of layers, not '2.5'");
+  CHECK(has(error("m.stl --scale 0"), "--scale factors must be positive"));
+  CHECK(has(error("m.stl --rotate quarter"), "--rotate needs an angle in degrees"));
+  CHECK(has(error("m.stl --move 10"), "--move needs X,Y in mm"));
+  CHECK(has(error("m.stl --copies 0"), "--copies needs a whole number from 1 to 1000"));
+  CHECK(has(error("m.stl --spacing -1"), "--spacing needs a distance in mm"));
+  CHECK(error("m.stl --arrange --no-arrange") == "--arrange and --no-arrange contradict each other");
+}
