@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "apps/plate_adapter.h"
 #include "compiler/load_rules.h"
 #include "geometry/plate/detect.h"
 #include "geometry/plate/plate.h"
+#include "runtime/context/cascade.h"
 #include "runtime/context/overrides.h"
 
 namespace tranche::app {
@@ -50,6 +50,22 @@ Result<std::shared_ptr<const vm::RuleSet>> compile(const pipeline::SliceOptions&
   return compiler::load_rules(in, report);
 }
 
+// The bed the printer profile describes (bed_size_x, bed_size_y; rectangular, origin 0, 0; no
+// height limit yet), from the compiled rules and the plain --set overrides.
+Result<plate::Bed> bed_from_profile(const pipeline::SliceOptions& options, const vm::RuleSet* rules) {
+  std::vector<std::pair<std::string, std::string>> plain;
+  for (const auto& [k, v] : options.sets)
+    if (ctx::is_plain_override(k, v)) plain.emplace_back(k, v);
+  auto cascade = ctx::Cascade::create(plain, rules, rules, rules);
+  if (!cascade) return cascade.error();
+  auto props = (*cascade)->print_props(ctx::Context{});
+  if (!props) return props.error();
+  plate::Bed bed;
+  bed.size_x_mm = (*props)[schema::PropId::BedSizeX];
+  bed.size_y_mm = (*props)[schema::PropId::BedSizeY];
+  return bed;
+}
+
 }  // namespace
 
 Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
@@ -74,12 +90,12 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
   if (!rules) return rules.error();
   pipeline::SliceOptions o = options;
   o.model = plate.files[0];
-  if (svg) return pipeline::run_slice(o, rules->get(), report);
+  if (svg) return pipeline::run_slice(o, nullptr, rules->get(), report);
   auto bed = bed_from_profile(options, rules->get());
   if (!bed) return bed.error();
   auto p = plate::build_plate(plate, *bed, report);
   if (!p) return p.error();
-  return slice_plate(o, *p, plate.files, rules->get(), report);
+  return pipeline::run_slice(o, &*p, rules->get(), report);
 }
 
 }  // namespace tranche::app

@@ -31,6 +31,7 @@ struct Cell {
 struct Island {
   Polygon shape;  // outer CCW, holes CW
   double area_mm2 = 0;
+  int object = 0;  // the plate's object it belongs to
 };
 
 struct Layer {

@@ -11,6 +11,7 @@
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/driver.h"
+#include "geometry/pipeline/load_plate.h"
 #include "geometry/pipeline/progress.h"
 #include "geometry/preview/preview_html.h"
 #include "geometry/polygon/layers.h"
@@ -24,88 +25,12 @@
 namespace tranche::pipeline {
 namespace {
 
-bool ends_with_svg(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".svg";
-}
-
 // Options that later stages will honour; until then the user hears that they were ignored.
 void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
   if (o.overlap == OverlapMode::Subtractive && !svg)
     report.warn("overlap-svg-only", "",
                 "--overlap subtractive applies to SVG drawings only; overlapping shells are united "
                 "(additive)");
-}
-
-// Moves the model so that its lowest point is at z = 0; errors for meshes with nothing to slice.
-Status place(geo::Mesh& mesh, const std::string& file) {
-  if (mesh.triangles.empty()) return Error{file, "the model has no triangles: nothing to slice"};
-  const geo::BBox3 b = mesh.bbox();
-  for (double v : {b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z})
-    if (!std::isfinite(v))
-      return Error{file, "the model has coordinates that are not finite numbers; repair it"};
-  const double height = b.max.z - b.min.z;
-  if (!(height > 0))
-    return Error{file,
-                 fmt::format("the model is flat (all its points at z = {} mm): nothing to slice; give it a "
-                             "thickness, or slice a drawing as SVG",
-                             b.min.z)};
-  mesh.transform(1.0, {0, 0, -b.min.z});
-  return ok_status();
-}
-
-void warn_topology(const geo::MeshTopology& t, const std::string& file, Report& report) {
-  if (t.boundary_edges)
-    report.warn(
-        "mesh-open", file,
-        fmt::format("the mesh is not closed: {} edges belong to a single triangle; each layer's outline is "
-                    "closed across the gaps (see the open-loop warnings)",
-                    t.boundary_edges));
-  if (t.nonmanifold_edges)
-    report.warn("mesh-nonmanifold", file,
-                fmt::format("{} edges are shared by more than two triangles (shells touching along an edge)",
-                            t.nonmanifold_edges));
-  if (t.misoriented_edges)
-    report.warn(
-        "mesh-orientation", file,
-        fmt::format("{} edges join triangles of opposite winding: some triangles are flipped; outlines may "
-                    "break there — repair the model's winding",
-                    t.misoriented_edges));
-}
-
-// The print stage, decided once, and the layer heights it leads to.
-struct PrintStage {
-  ctx::Context ctx;            // the print fields
-  ctx::PropertyValues props;   // the print stage's decisions
-};
-
-Result<PrintStage> decide_print(const ctx::Cascade& cascade, const setup::PrintFacts& facts) {
-  PrintStage p;
-  p.ctx = setup::print_context(facts);
-  auto props = cascade.print_props(p.ctx);
-  if (!props) return props.error();
-  p.props = std::move(*props);
-  return p;
-}
-
-// Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
-Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
-                                             const std::string& model) {
-  Status error = ok_status();
-  geo::LayerHeightParams params;
-  params.height = [&](int index, double z_bottom) {
-    auto h = cascade.layer_height(print.ctx, print.props, index, z_bottom);
-    if (!h) {
-      if (error) error = h.error();
-      return 0.2;
-    }
-    return *h;
-  };
-  auto layers = geo::plan_layer_heights(top, params);
-  if (!error) return error.error();
-  if (!layers) return Error{model, layers.error().to_string()};
-  return layers;
 }
 
 // The top (mm) of the first `n` layers the cascade plans: a drawing extruded by layer count.
@@ -130,19 +55,11 @@ geo::BBox2 loops_box(const std::vector<geo::Layer>& layers) {
   return box;
 }
 
-// What loading gives the stages after it.
-struct Loaded {
-  std::vector<geo::Layer> layers;  // sliced: loops set
-  setup::PrintFacts facts;
-  PrintStage print;
-  size_t triangles = 0;
-};
-
 // SVG input: a layer stack keeps its own layers; a flat drawing is repeated on every layer of a
 // prism --svg-height mm high, or of --svg-layers layers (10 by default), its heights planned by
 // the cascade like an STL's. The print stage of a drawing extruded by layer count is decided
 // before its height is known: there, print.height reads 0 (docs/architecture.md).
-Result<Loaded> load_svg(const SliceOptions& o, const ctx::Cascade& cascade, Report& report) {
+Result<SlicedPlate> load_svg(const SliceOptions& o, const ctx::Cascade& cascade, Report& report) {
   geo::SvgImportOptions so;
   so.tolerance_mm = o.svg_tolerance_mm;
   so.overlap = o.overlap == OverlapMode::Boolean       ? geo::SvgOverlap::Boolean
@@ -151,7 +68,8 @@ Result<Loaded> load_svg(const SliceOptions& o, const ctx::Cascade& cascade, Repo
   so.background = o.background;
   auto model = geo::load_svg(o.model, so, report);
   if (!model) return model.error();
-  Loaded out;
+  SlicedPlate out;
+  out.facts.objects = {o.model};
   if (model->layer_stack) {
     if (o.svg_layers > 0 || o.svg_height_mm > 0)
       report.warn("svg-stack-height", o.model,
@@ -188,38 +106,6 @@ Result<Loaded> load_svg(const SliceOptions& o, const ctx::Cascade& cascade, Repo
   out.print.ctx.set(schema::FieldId::PrintHeight, out.facts.height);
   out.layers = std::move(*planned);
   for (auto& l : out.layers) l.loops = loops;
-  return out;
-}
-
-Result<Loaded> load_stl(const SliceOptions& o, const ctx::Cascade& cascade, Progress& progress, Report& report) {
-  progress.start("load");
-  auto mesh = geo::load_stl(o.model, report);
-  if (!mesh) return mesh.error();
-  if (auto st = place(*mesh, o.model); !st) return st.error();
-  const geo::MeshTopology topology = geo::build_topology(*mesh);
-  warn_topology(topology, o.model, report);
-  progress.finish(fmt::format("{} triangles", mesh->triangles.size()));
-
-  Loaded out;
-  const geo::BBox3 box = mesh->bbox();
-  out.facts.height = box.max.z;
-  out.facts.volume = mesh->volume();
-  out.facts.box.add(geo::to_point(box.min.x, box.min.y));
-  out.facts.box.add(geo::to_point(box.max.x, box.max.y));
-  auto print = decide_print(cascade, out.facts);
-  if (!print) return print.error();
-  out.print = std::move(*print);
-  auto layers = plan_heights(cascade, out.print, box.max.z, o.model);
-  if (!layers) return layers.error();
-  out.layers = std::move(*layers);
-
-  progress.start("slice", out.layers.size());
-  geo::SliceParams params;
-  params.progress = [&](size_t done) { progress.update(done); };
-  auto stats = geo::slice_mesh(*mesh, topology, out.layers, params, report);
-  if (!stats) return Error{o.model + ": " + stats.error().where, stats.error().message};
-  progress.finish(fmt::format("{} layers, {} loops", out.layers.size(), stats->loops));
-  out.triangles = mesh->triangles.size();
   return out;
 }
 
@@ -266,19 +152,11 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
 
 // The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
 // angles, then every layer planned and written.
-Result<SliceSummary> finish(Loaded& in, SliceSummary summary, geo::FillAngleScript* script,
+Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngleScript* script,
                             const SliceOptions& options, Progress& progress, ctx::Cascade& cascade,
                             const vm::RuleSet* rules, Report& report) {
   auto tick = [&](size_t done) { progress.update(done); };
   std::vector<geo::Layer>& layers = in.layers;
-  // Islands (geometry/polygon): SVG input arrives with its overlap mode already applied.
-  geo::ResolveOptions resolve;
-  const bool boolean = options.overlap == OverlapMode::Boolean && !ends_with_svg(options.model);
-  resolve.overlap = boolean ? geo::OverlapMode::Boolean : geo::OverlapMode::Additive;
-  resolve.strict = options.strict;
-  progress.start("islands", layers.size());
-  if (auto st = geo::resolve_layers(layers, resolve, report, tick); !st) return st.error();
-  progress.finish();
   if (std::all_of(layers.begin(), layers.end(), [](const geo::Layer& l) { return l.islands.empty(); }))
     return Error{options.model,
                  "nothing to print: no layer has any material (a surface without volume?); check that the "
@@ -344,7 +222,8 @@ Status check_options(const SliceOptions& options) {
   return ok_status();
 }
 
-Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* rs, Report& report) {
+Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rs,
+                               Report& report) {
   if (Status s = check_options(options); !s) return s.error();
   // A --set of a property to a plain value (`0.2`, `20%`, `rear`) is an override, the last layer
   // of the cascade; the others (expressions, params) were compiled into `rs` by the caller.
@@ -353,8 +232,7 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* r
     if (ctx::is_plain_override(k, v)) plain.emplace_back(k, v);
   auto cascade = ctx::Cascade::create(plain, rs, rs, rs);  // a bad --set fails before any work
   if (!cascade) return cascade.error();
-  const bool svg = ends_with_svg(options.model);
-  warn_unapplied(options, svg, report);
+  warn_unapplied(options, plate == nullptr, report);
   Progress progress(!options.quiet);
 
   std::unique_ptr<geo::FillAngleScript> script;  // loaded first: a broken script fails before slicing
@@ -365,17 +243,27 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* r
   }
 
   SliceSummary summary;
-  if (svg) {
+  // Islands (geometry/polygon): an SVG arrives with its overlap mode already applied; a plate's
+  // objects are resolved each on its own.
+  geo::ResolveOptions resolve;
+  resolve.overlap = plate && options.overlap == OverlapMode::Boolean ? geo::OverlapMode::Boolean
+                                                                     : geo::OverlapMode::Additive;
+  resolve.strict = options.strict;
+  if (!plate) {
     progress.start("load");
     auto loaded = load_svg(options, **cascade, report);
     if (!loaded) return loaded.error();
     progress.finish(fmt::format("{} layers", loaded->layers.size()));
+    progress.start("islands", loaded->layers.size());
+    if (auto st = geo::resolve_layers(loaded->layers, resolve, report, [&](size_t n) { progress.update(n); }); !st)
+      return st.error();
+    progress.finish();
     return finish(*loaded, summary, script.get(), options, progress, **cascade, rs, report);
   }
-  auto loaded = load_stl(options, **cascade, progress, report);
-  if (!loaded) return loaded.error();
-  summary.triangles = loaded->triangles;
-  return finish(*loaded, summary, script.get(), options, progress, **cascade, rs, report);
+  auto sliced = slice_plate(*plate, **cascade, resolve, progress, report);
+  if (!sliced) return sliced.error();
+  summary.triangles = sliced->triangles;
+  return finish(*sliced, summary, script.get(), options, progress, **cascade, rs, report);
 }
 
 }  // namespace tranche::pipeline

@@ -10,6 +10,7 @@
 
 #include "base/report.h"
 #include "base/result.h"
+#include "geometry/plate/object.h"
 #include "runtime/vm/vm.h"
 
 namespace tranche::pipeline {
@@ -49,8 +50,10 @@ struct SliceSummary {
 // What can be refused before any work (today: a run that writes nothing).
 Status check_options(const SliceOptions& options);
 
-// `rules`: the profile, --rules files and --set expressions compiled and linked (null: none);
-// the plain --set overrides of `options.sets` are applied above them.
-Result<SliceSummary> run_slice(const SliceOptions& options, const vm::RuleSet* rules, Report& report);
+// Slices `plate` (meshes: STL, 3MF, OBJ, placed by geometry/plate), or when it is null the SVG
+// drawing `options.model`. `rules`: the profile, --rules files and --set expressions compiled and
+// linked (null: none); the plain --set overrides of `options.sets` are applied above them.
+Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rules,
+                               Report& report);
 
 }  // namespace tranche::pipeline

@@ -45,6 +45,7 @@ std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, doub
       for (const auto& h : isl.shape.holes)
         if (auto s = toolpath::simplify(h, tol); !s.empty()) is.shape.holes.push_back(std::move(s));
       is.area_mm2 = isl.area_mm2;
+      is.object = isl.object;
       dst.islands.push_back(std::move(is));
       source[i].push_back(k);
     }
@@ -70,12 +71,14 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
   s->print_props = P;
   s->flavor = static_cast<schema::Flavor>(static_cast<int>(P[PropId::GcodeFlavor]));
   // Placement: the model's XY extent centred on the bed (a drawing's: its layers').
+  s->objects = facts.objects;
   geo::BBox2 box = facts.box;
   if (box.empty())
     for (const auto& l : layers)
       for (const auto& isl : l.islands)
         for (const auto& p : isl.shape.outer) box.add(p);
-  if (!box.empty()) {
+  if (facts.placed) s->shift = facts.shift;
+  if (!box.empty() && !facts.placed) {
     s->shift = geo::Point(geo::to_units(0.5 * P[PropId::BedSizeX]) - (box.min_x + box.max_x) / 2,
                           geo::to_units(0.5 * P[PropId::BedSizeY]) - (box.min_y + box.max_y) / 2);
     const double w = geo::to_mm(box.max_x - box.min_x), d = geo::to_mm(box.max_y - box.min_y);

@@ -24,6 +24,11 @@ struct PrintFacts {
   double height = 0;  // top of the model after placing it on the bed (z = 0 at its bottom)
   double volume = 0;  // enclosed by the mesh (0 for drawings)
   geo::BBox2 box;     // XY extent; empty: the layers' extent (drawings)
+  // The model is placed (a plate): its coordinates + `shift` are the bed's, and `box` is in bed
+  // coordinates; else it is centred on the bed.
+  bool placed = false;
+  geo::Point shift;
+  std::vector<std::string> objects;  // each object's name, by Island::object
 };
 
 // The print context: the print fields (print.height, print.size_x/y, print.volume) of `facts`.
@@ -51,6 +56,7 @@ struct PrintSetup {
   ctx::Context hook_ctx;
   ctx::PropertyValues hook_props;
   schema::Flavor flavor = schema::Flavor::Marlin;
+  std::vector<std::string> objects;  // object names, by Island::object
   // Record who decided what for every element (--export-preview); off, deciding records nothing.
   bool provenance = false;
 };

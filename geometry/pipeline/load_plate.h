@@ -1,0 +1,43 @@
+// The plate's objects (geometry/plate: loaded, transformed, arranged, checked) sliced into one
+// stack of layers: the print facts measured over every object, the print stage decided once, the
+// layer heights planned for the tallest, then each object sliced and resolved on its own and its
+// islands added to the layers, tagged with their object, at their place on the bed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "base/report.h"
+#include "base/result.h"
+#include "geometry/core/layer.h"
+#include "geometry/pipeline/progress.h"
+#include "geometry/plate/object.h"
+#include "geometry/polygon/resolve.h"
+#include "geometry/setup/print_setup.h"
+#include "runtime/context/cascade.h"
+
+namespace tranche::pipeline {
+
+// The print stage, decided once: the print context and its decisions.
+struct PrintStage {
+  ctx::Context ctx;           // the print fields
+  ctx::PropertyValues props;  // the print stage's decisions
+};
+Result<PrintStage> decide_print(const ctx::Cascade& cascade, const setup::PrintFacts& facts);
+
+// Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
+Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
+                                             const std::string& model);
+
+struct SlicedPlate {
+  std::vector<geo::Layer> layers;  // every object's islands (Island::object), in bed coordinates
+  setup::PrintFacts facts;         // placed: the islands are where the bed has them
+  PrintStage print;
+  size_t triangles = 0;
+};
+
+// `resolve`: the overlap mode and strictness, applied to each object on its own.
+Result<SlicedPlate> slice_plate(const plate::Plate& plate, const ctx::Cascade& cascade,
+                                const geo::ResolveOptions& resolve, Progress& progress, Report& report);
+
+}  // namespace tranche::pipeline
