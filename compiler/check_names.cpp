@@ -249,7 +249,8 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
         return Type::error();
     }
   }
-  if (auto level = level_named(obj)) {
+  // `object.index`: an island's object, known with the island.
+  if (auto level = obj == "object" ? std::optional<schema::Level>(schema::Level::Island) : level_named(obj)) {
     std::string full = obj + "." + m;
     if (auto f = schema::find_field(full)) {
       const auto& info = schema::field(*f);

@@ -35,6 +35,7 @@ void set_island_fields(ctx::Context& c, const IslandPlan& i) {
   c.set(FieldId::IslandCenterX, i.center_x);
   c.set(FieldId::IslandCenterY, i.center_y);
   c.set(FieldId::IslandCells, static_cast<double>(i.cells.size()));
+  c.set(FieldId::ObjectIndex, i.object);
 }
 
 void set_cell_fields(ctx::Context& c, const CellPlan& cell) {
@@ -121,6 +122,8 @@ void IslandsView::bind(ctx::Context& c, const std::vector<IslandPlan>& list) {
         return isl.center_y;
       case FieldId::IslandCells:
         return static_cast<double>(isl.cells.size());
+      case FieldId::ObjectIndex:
+        return static_cast<double>(isl.object);
       default:
         return 0.0;
     }

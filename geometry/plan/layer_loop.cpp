@@ -99,6 +99,7 @@ Status LayerTask::layer_level() {
 
 Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip) {
   ip.index = index;
+  ip.object = src.object;
   ip.shape.push_back(src.shape.outer);
   for (const auto& h : src.shape.holes) ip.shape.push_back(h);
   if (Status s = redecide_island(ip); !s) return s;

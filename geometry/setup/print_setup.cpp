@@ -17,6 +17,7 @@ ctx::Context print_context(const PrintFacts& facts) {
   c.set(FieldId::PrintSizeX, box.empty() ? 0 : geo::to_mm(box.max_x - box.min_x));
   c.set(FieldId::PrintSizeY, box.empty() ? 0 : geo::to_mm(box.max_y - box.min_y));
   c.set(FieldId::PrintVolume, facts.volume);
+  c.set(FieldId::ObjectCount, static_cast<double>(std::max<size_t>(facts.objects.size(), 1)));
   return c;
 }
 

@@ -148,3 +148,16 @@ TEST_CASE("layer loop: an island replacer's offset shrinks the island and decide
   auto untouched = f.plan(2);
   CHECK(untouched.islands[0].props[PropId::Perimeters] == 2);
 }
+
+TEST_CASE("layer loop: islands know their object, so rules set per-object values") {
+  auto layers = prism_layers(3, {square_mm(0, 0, 10, 10), square_mm(30, 0, 40, 10)});
+  for (auto& l : layers) l.islands[1].object = 1;
+  PrintFixture f(layers, "rule \"lid\" when object.index == 1 { perimeters = 3; infill_density = 40% }\n",
+                 {{"skirt_loops", "0"}});
+  auto lp = f.plan(1);
+  REQUIRE(lp.islands.size() == 2);
+  for (const auto& ip : lp.islands) {
+    CHECK(ip.props[PropId::Perimeters] == (ip.object == 1 ? 3 : 2));
+    CHECK(ip.props[PropId::InfillDensity] == doctest::Approx(ip.object == 1 ? 0.4 : 0.2));
+  }
+}
