@@ -61,8 +61,14 @@ Result<plate::Bed> bed_from_profile(const pipeline::SliceOptions& options, const
   auto props = (*cascade)->print_props(ctx::Context{});
   if (!props) return props.error();
   plate::Bed bed;
-  bed.size_x_mm = (*props)[schema::PropId::BedSizeX];
-  bed.size_y_mm = (*props)[schema::PropId::BedSizeY];
+  const auto& P = *props;
+  bed.shape = P[schema::PropId::BedShape] == static_cast<double>(schema::BedShape::Circular) ? plate::Bed::Shape::Circle
+                                                                                            : plate::Bed::Shape::Rectangle;
+  bed.size_x_mm = P[schema::PropId::BedSizeX];
+  bed.size_y_mm = bed.shape == plate::Bed::Shape::Circle ? bed.size_x_mm : P[schema::PropId::BedSizeY];
+  bed.origin_x_mm = P[schema::PropId::BedOriginX];
+  bed.origin_y_mm = P[schema::PropId::BedOriginY];
+  bed.max_height_mm = P[schema::PropId::MaxPrintHeight];
   return bed;
 }
 
@@ -90,6 +96,8 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
   if (!rules) return rules.error();
   pipeline::SliceOptions o = options;
   o.model = plate.files[0];
+  o.allow_off_bed = plate.allow_off_bed;
+  for (size_t i = 1; i < plate.files.size() && !svg; ++i) o.model += " + " + plate.files[i];
   if (svg) return pipeline::run_slice(o, nullptr, rules->get(), report);
   auto bed = bed_from_profile(options, rules->get());
   if (!bed) return bed.error();

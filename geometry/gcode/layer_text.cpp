@@ -260,10 +260,14 @@ class Formatter final : public ctx::LineSink {
   }
   void xy(const geo::Point& p) {
     auto& t = out_.text;
+    const int64_t x = round_div(p.X + S.shift.X, 1000), y = round_div(p.Y + S.shift.Y, 1000);
     t += " X";
-    append_fixed(t, round_div(p.X + S.shift.X, 1000), 3);
+    append_fixed(t, x, 3);
     t += " Y";
-    append_fixed(t, round_div(p.Y + S.shift.Y, 1000), 3);
+    append_fixed(t, y, 3);
+    const double off = S.bed.outside(1e-3 * static_cast<double>(x), 1e-3 * static_cast<double>(y));
+    if (off > out_.off_bed_mm)
+      out_.off_bed_mm = off, out_.off_bed_x = 1e-3 * static_cast<double>(x), out_.off_bed_y = 1e-3 * static_cast<double>(y);
   }
   static int64_t round_div(int64_t v, int64_t d) { return v >= 0 ? (v + d / 2) / d : -((-v + d / 2) / d); }
   void e_word(int64_t new_int) {

@@ -33,6 +33,9 @@ struct LayerText {
   geo::Point first, last;  // model units: where the layer's first travel goes, where it ends
   bool ends_retracted = false;  // a retraction (a replacer's) that no extrusion of the layer undid
   int travels = 0, retractions = 0;
+  // The move that goes farthest off the bed (PrintSetup::bed): by how much (mm, 0 when none) and
+  // where (G-code mm).
+  double off_bed_mm = 0, off_bed_x = 0, off_bed_y = 0;
   std::shared_ptr<const toolpath::Comber> comber;  // the layer's material, to comb the layer change
   // Provenance (PrintSetup::provenance): the G-code each executor added, and where.
   struct HookNote {

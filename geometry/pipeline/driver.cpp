@@ -76,6 +76,25 @@ void make_item(Item& item, const setup::PrintSetup& setup, const ctx::Cascade& c
   if (out.preview) item.preview = preview_layer(setup, *plan, &item.text, out.rules);
 }
 
+// A move off the bed would hit the printer's frame: an error naming the layer and by how much,
+// unless the user allowed it (then one warning for the run).
+Status check_bed(const Item& item, const setup::PrintSetup& setup, Report& report, bool& warned) {
+  const gcode::LayerText& t = item.text;
+  if (t.off_bed_mm <= 0.001) return ok_status();
+  const auto& b = setup.bed;
+  const std::string where = fmt::format("layer {} (z {:.2f} mm)", item.index, setup.layers[static_cast<size_t>(item.index)].z_top);
+  const std::string what = fmt::format(
+      "a move reaches X{:.3f} Y{:.3f}, {:.2f} mm outside the bed ({}{:g} to {:g} x {:g} to {:g} mm)", t.off_bed_x,
+      t.off_bed_y, t.off_bed_mm, b.circular ? "a circle in " : "", b.min_x, b.max_x, b.min_y, b.max_y);
+  if (!setup.allow_off_bed)
+    return Error{where, what + "; scale the model down (--scale), arrange the plate (--arrange), check bed_size_x/"
+                                "bed_size_y and bed_origin_x/bed_origin_y, or, if the printer does reach it, "
+                                "--allow-off-bed"};
+  if (!warned) report.warn("off-bed", where, what + " (--allow-off-bed)");
+  warned = true;
+  return ok_status();
+}
+
 // Writes one layer to every output, in order.
 Status write_item(const Item& item, const LayerOutputs& out) {
   if (out.gcode)
@@ -98,6 +117,7 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
   std::atomic<bool> failed{false};
   Status first_error = ok_status();
   size_t written = 0;
+  bool warned_off_bed = false;
   std::unique_ptr<tbb::global_control> limit;
   if (outputs.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, outputs.threads);
@@ -120,6 +140,7 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
     if (failed.load()) return;
     for (Warning& w : item->warnings.warnings()) report.warn(std::move(w.code), std::move(w.where), std::move(w.message));
     Status s = item->status;
+    if (s && outputs.gcode) s = check_bed(*item, setup, report, warned_off_bed);
     if (s) s = write_item(*item, outputs);
     if (!s) {
       first_error = s;

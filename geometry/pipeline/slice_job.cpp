@@ -165,6 +165,7 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
   auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
   if (!setup) return setup.error();
   (*setup)->provenance = !options.export_preview.empty();
+  (*setup)->allow_off_bed = options.allow_off_bed;
   std::unique_ptr<geo::ScriptAngles> angles;
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
     progress.start("fill angles");

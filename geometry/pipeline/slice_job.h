@@ -37,6 +37,7 @@ struct SliceOptions {
   double svg_tolerance_mm = 0.01;           // --svg-tolerance: largest curve-to-polyline gap, mm
   std::string background = "white";         // --background: the colour that erases (subtractive)
   bool strict = false;                      // --strict: coherence warnings become errors
+  bool allow_off_bed = false;               // --allow-off-bed: a move off the bed is a warning, not an error
   bool quiet = false;                       // --quiet: no progress on stderr
 };
 

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::setup {
@@ -62,6 +65,15 @@ double layer_area_mm2(const geo::Layer& l) {
 
 }  // namespace
 
+double PrintSetup::Bed::outside(double x, double y) const {
+  if (circular) {
+    const double cx = 0.5 * (min_x + max_x), cy = 0.5 * (min_y + max_y), r = 0.5 * (max_x - min_x);
+    return std::max(0.0, std::hypot(x - cx, y - cy) - r);
+  }
+  const double dx = std::max({min_x - x, 0.0, x - max_x}), dy = std::max({min_y - y, 0.0, y - max_y});
+  return std::hypot(dx, dy);
+}
+
 Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layers, const PrintFacts& facts,
                                                const ctx::Context& print_ctx,
                                                const ctx::PropertyValues& print_props,
@@ -73,6 +85,11 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
   s->flavor = static_cast<schema::Flavor>(static_cast<int>(P[PropId::GcodeFlavor]));
   // Placement: the model's XY extent centred on the bed (a drawing's: its layers').
   s->objects = facts.objects;
+  s->bed.circular = P[PropId::BedShape] == static_cast<double>(schema::BedShape::Circular);
+  s->bed.min_x = P[PropId::BedOriginX];
+  s->bed.min_y = P[PropId::BedOriginY];
+  s->bed.max_x = s->bed.min_x + P[PropId::BedSizeX];
+  s->bed.max_y = s->bed.min_y + (s->bed.circular ? P[PropId::BedSizeX] : P[PropId::BedSizeY]);
   geo::BBox2 box = facts.box;
   if (box.empty())
     for (const auto& l : layers)
@@ -80,8 +97,8 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
         for (const auto& p : isl.shape.outer) box.add(p);
   if (facts.placed) s->shift = facts.shift;
   if (!box.empty() && !facts.placed) {
-    s->shift = geo::Point(geo::to_units(0.5 * P[PropId::BedSizeX]) - (box.min_x + box.max_x) / 2,
-                          geo::to_units(0.5 * P[PropId::BedSizeY]) - (box.min_y + box.max_y) / 2);
+    s->shift = geo::Point(geo::to_units(0.5 * (s->bed.min_x + s->bed.max_x)) - (box.min_x + box.max_x) / 2,
+                          geo::to_units(0.5 * (s->bed.min_y + s->bed.max_y)) - (box.min_y + box.max_y) / 2);
     const double w = geo::to_mm(box.max_x - box.min_x), d = geo::to_mm(box.max_y - box.min_y);
     if (w > P[PropId::BedSizeX] || d > P[PropId::BedSizeY])
       report.warn("bed-size", model_name,

@@ -59,6 +59,15 @@ struct PrintSetup {
   std::vector<std::string> objects;  // object names, by Island::object
   // Record who decided what for every element (--export-preview); off, deciding records nothing.
   bool provenance = false;
+  // The bed in G-code coordinates (mm), from the print stage: every move of every layer must
+  // stay on it unless allow_off_bed (then a warning).
+  struct Bed {
+    bool circular = false;
+    double min_x = 0, min_y = 0, max_x = 200, max_y = 200;  // the rectangle, or the circle's square
+    // How far (mm) the point (x, y) lies outside the bed; 0 on it.
+    double outside(double x, double y) const;
+  } bed;
+  bool allow_off_bed = false;
 };
 
 // Builds the setup of `layers` (resolved, bottom to top, not empty). `print_ctx` and

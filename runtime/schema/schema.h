@@ -87,6 +87,7 @@ enum class PathKind : uint8_t {
 enum class Border : uint8_t { None, Real, Artificial };
 enum class Flavor : uint8_t { Marlin, Klipper, RepRapFirmware };
 enum class Seam : uint8_t { Aligned, Nearest, Rear };
+enum class BedShape : uint8_t { Rectangular, Circular };
 
 struct FieldInfo {
   FieldId id;

@@ -176,6 +176,51 @@ TEST_CASE("plate e2e: a model larger than the bed is refused and nothing is writ
   CHECK(fs::exists(dir / "plate.gcode"));
 }
 
+TEST_CASE("plate e2e: every move of every layer is checked against the bed, the skirt's too") {
+  test::TempDir dir("plate-skirt-off");
+  const std::string model = (dir / "big.stl").string();
+  REQUIRE(geo::write_stl_binary(model, geo::box({190, 190, 1})).ok());
+  pipeline::SliceOptions o = options(dir);
+  o.model = model;
+  o.sets = {{"skirt_loops", "1"}, {"skirt_distance", "6"}};  // the object fits; its skirt does not
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().where == "layer 0 (z 0.20 mm)");
+  CHECK(has(r.error().message, "mm outside the bed (0 to 200 x 0 to 200 mm)"));
+  CHECK(has(r.error().message, "--allow-off-bed"));
+  CHECK_FALSE(fs::exists(dir / "plate.gcode"));
+  o.allow_off_bed = true;
+  plate::PlateOptions p;
+  p.files = {model};
+  p.allow_off_bed = true;
+  auto anyway = app::slice(o, p, report);
+  REQUIRE_MESSAGE(anyway.ok(), anyway.error().to_string());
+  CHECK(report.count("off-bed") == 1);
+  CHECK(fs::exists(dir / "plate.gcode"));
+}
+
+TEST_CASE("plate e2e: a delta's round bed centred on 0: the model lands on 0, 0") {
+  test::TempDir dir("plate-delta");
+  const std::string model = (dir / "cube.stl").string();
+  REQUIRE(geo::write_stl_binary(model, geo::box({20, 20, 2})).ok());
+  pipeline::SliceOptions o = options(dir);
+  o.model = model;
+  o.sets = {{"bed_shape", "circular"}, {"bed_size_x", "180"}, {"bed_origin_x", "-90"}, {"bed_origin_y", "-90"},
+            {"skirt_loops", "0"}};
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  auto g = test::read_gcode(o.output_gcode);
+  auto ps = parts(g, 1);
+  REQUIRE(ps.size() == 1);
+  CHECK(0.5 * (ps[0].min_x + ps[0].max_x) == doctest::Approx(0).epsilon(0.01));
+  CHECK(0.5 * (ps[0].min_y + ps[0].max_y) == doctest::Approx(0).epsilon(0.01));
+  // A cube that fits the bed's square but not its circle is refused.
+  REQUIRE(geo::write_stl_binary(model, geo::box({150, 150, 2})).ok());
+  CHECK_FALSE(app::slice(o, report).ok());
+}
+
 TEST_CASE("plate e2e: OBJ input, copies and a turn") {
   test::TempDir dir("plate-obj");
   std::ofstream(dir / "bar.obj") << "v 0 0 0\nv 30 0 0\nv 30 8 0\nv 0 8 0\nv 0 0 3\nv 30 0 3\nv 30 8 3\nv 0 8 3\n"
