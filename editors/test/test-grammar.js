@@ -283,8 +283,8 @@ async function main() {
   const gEnums = alternation('support.constant.enum');
   const gLevels = alternation('variable.language.level');
   const same = (a, b) => a.length === b.length && [...a].sort().join() === [...b].sort().join();
-  check(same(gProps, props), `grammar properties differ from runtime/schema/properties.def: grammar ${gProps.join(',')}; schema ${props.join(',')}`);
-  check(same([...new Set(gEnums)], [...new Set(enumValues)]), `grammar enum values differ from runtime/schema/enums.def: ${enumValues.join(',')}`);
+  check(same(gProps, props), `grammar properties differ from runtime/schema/properties.def (run editors/update-grammar.py): grammar ${gProps.join(',')}; schema ${props.join(',')}`);
+  check(same([...new Set(gEnums)], [...new Set(enumValues)]), `grammar enum values differ from runtime/schema/enums.def (run editors/update-grammar.py): ${enumValues.join(',')}`);
   check(same(gLevels, levels), `grammar levels differ from runtime/schema/fields.def: ${levels.join(',')}`);
 
   // The VS Code extension manifest points at this grammar.
