@@ -231,3 +231,29 @@ TEST_CASE("--fill-angle-script through run_slice") {
     CHECK(contains(r.error().message, "syntax error"));
   }
 }
+
+TEST_CASE("a drawing is centred on the bed like a lone model, wherever it sits on its page") {
+  test::TempDir dir("svg-centre");
+  SliceOptions o;
+  o.model = write(dir, "corner.svg",
+                  R"(<svg xmlns="http://www.w3.org/2000/svg" width="210mm" height="297mm" viewBox="0 0 210 297">
+  <rect x="0" y="277" width="20" height="20" fill="black"/></svg>)");
+  o.output_gcode = (dir / "corner.gcode").string();
+  o.sets = {{"skirt_loops", "0"}};
+  Report report;
+  auto r = run(o, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  std::ifstream in(o.output_gcode);
+  std::string line;
+  double lo = 1e9, hi = -1e9;
+  bool layers = false;
+  while (std::getline(in, line)) {
+    if (line.rfind(";LAYER:0", 0) == 0) layers = true;
+    if (layers && line == ";TYPE:Custom") break;  // the end G-code (it parks the head)
+    if (!layers || line.rfind("G1 X", 0) != 0) continue;
+    const double x = std::stod(line.substr(4));
+    lo = std::min(lo, x), hi = std::max(hi, x);
+  }
+  CHECK(0.5 * (lo + hi) == doctest::Approx(100).epsilon(0.01));
+  CHECK(hi - lo < 21);
+}
