@@ -6,6 +6,7 @@
 
 #include "geometry/gcode/numbers.h"
 #include "geometry/plan/timing.h"
+#include "geometry/toolpath/motion.h"
 #include "geometry/toolpath/flow.h"
 
 #ifndef TRANCHE_VERSION
@@ -252,6 +253,35 @@ Status GcodeWriter::layer(const LayerText& t, double time_s, double height_mm) {
   summary_.retractions += t.retractions;
   ++summary_.layers;
   return ok_status();
+}
+
+Status GcodeWriter::object_change(const geo::Point& to, double safe_z_mm) {
+  std::string s = ";TYPE:Custom\n; next object: up, across, then down at its first point\n";
+  if (travel_.can_retract() && !ends_retracted_) {
+    s += "G92 E0\nG1 E";
+    append_fixed(s, -std::llround(travel_.retract_mm * 1e5), 5);
+    s += fmt::format(" F{}\n", std::lround(travel_.retract_speed * 60));
+    ++summary_.retractions;
+    summary_.time_s += travel_.retract_time_s() / 2;
+    ends_retracted_ = true;
+  }
+  s += "G1 Z";
+  append_fixed(s, std::llround(safe_z_mm * 1000), 3);
+  s += fmt::format(" F{}\n", std::lround(travel_.travel_speed * 60));
+  s += "G1 X";
+  append_fixed(s, round_um(to.X + S.shift.X), 3);
+  s += " Y";
+  append_fixed(s, round_um(to.Y + S.shift.Y), 3);
+  s += '\n';
+  ++summary_.travels;
+  if (has_last_)
+    summary_.time_s += toolpath::trapezoid_time(
+        std::hypot(double(to.X - last_.X), double(to.Y - last_.Y)) * geo::kMmPerUnit, travel_.travel_speed, 0, 0,
+        S.motion.travel_accel);
+  summary_.time_s += 2 * safe_z_mm / S.motion.z_speed;  // up, and down again at the layer change
+  last_ = to;
+  has_last_ = true;
+  return file_.write(s);
 }
 
 Result<GcodeSummary> GcodeWriter::finish() {

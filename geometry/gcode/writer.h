@@ -46,6 +46,10 @@ class GcodeWriter {
                                                    const ctx::Executors* executors, const GcodeInfo& info);
   // The next layer: its text (format_layer), its estimated time (s) and height (mm).
   Status layer(const LayerText& text, double time_s, double height_mm);
+  // Between two objects printed one after the other: retract, rise to `safe_z_mm` (above what is
+  // printed), cross to `to` (the next object's first point, model units); the next layer's change
+  // then starts there, retracted.
+  Status object_change(const geo::Point& to, double safe_z_mm);
   // The end G-code and the footer; fills in the header's estimates and moves the file into place.
   Result<GcodeSummary> finish();
 

@@ -141,13 +141,16 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
     for (Warning& w : item->warnings.warnings()) report.warn(std::move(w.code), std::move(w.where), std::move(w.message));
     Status s = item->status;
     if (s && outputs.gcode) s = check_bed(*item, setup, report, warned_off_bed);
+    if (s && outputs.gcode && outputs.object_change_z > 0 && written == 0 && item->text.any_move)
+      s = outputs.gcode->object_change(item->text.first, outputs.object_change_z);
     if (s) s = write_item(*item, outputs);
     if (!s) {
       first_error = s;
       failed = true;
       return;
     }
-    if (progress) progress(++written);
+    ++written;
+    if (progress) progress(written);
   };
   tbb::parallel_pipeline(tokens, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order, source) &
                                      tbb::make_filter<int, std::shared_ptr<Item>>(tbb::filter_mode::parallel, work) &

@@ -29,6 +29,9 @@ struct LayerOutputs {
   preview::PreviewEncoder* preview = nullptr;  // --export-preview (needs PrintSetup::provenance for the chains)
   const vm::RuleSet* rules = nullptr;          // names the rules in the preview's provenance  // the exports also show the seed's exact cells (analysis)
   int threads = 0;           // 0: TBB's default
+  // Sequential printing: > 0 for every object but the first, the height (mm) the head rises to
+  // before crossing to this object's first layer (GcodeWriter::object_change).
+  double object_change_z = 0;
 };
 
 // Plans every layer of `setup` and writes it to `outputs`, in order. `progress` is called with

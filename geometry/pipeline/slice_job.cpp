@@ -13,6 +13,7 @@
 #include "geometry/pipeline/driver.h"
 #include "geometry/pipeline/load_plate.h"
 #include "geometry/pipeline/progress.h"
+#include "geometry/pipeline/sequential.h"
 #include "geometry/preview/preview_html.h"
 #include "geometry/polygon/layers.h"
 #include "geometry/setup/print_setup.h"
@@ -150,6 +151,36 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
   return out;
 }
 
+// print_order = sequential: each object, lowest first, planned and written whole (its own print
+// setup: its islands, its script angles), the head rising above what is printed between them.
+Status print_sequential(SlicedPlate& in, const setup::PrintSetup& all, LayerOutputs lo, geo::FillAngleScript* script,
+                        ctx::Cascade& cascade, const SliceOptions& options, Report& report) {
+  if (!lo.gcode) return ok_status();
+  auto passes = sequential_passes(in.layers, all.objects, in.print.props);
+  if (!passes) return passes.error();
+  lo.svg = nullptr, lo.json = nullptr, lo.preview = nullptr;
+  double printed_top = 0;
+  for (size_t k = 0; k < passes->size(); ++k) {
+    ObjectPass& pass = (*passes)[k];
+    auto one = setup::make_setup(pass.layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
+    if (!one) return one.error();
+    (*one)->provenance = all.provenance;
+    (*one)->allow_off_bed = all.allow_off_bed;
+    (*one)->skirt_around = k == 0 ? all.skirt_around : geo::Rings{};  // one skirt, round every object
+    std::unique_ptr<geo::ScriptAngles> angles;
+    if (script) {
+      auto a = geo::ScriptAngles::compute(*script, (*one)->layers, cascade, (*one)->print_ctx, in.print.props);
+      if (!a) return a.error();
+      angles = std::move(*a);
+      cascade.set_middle(angles.get());
+    }
+    lo.object_change_z = k == 0 ? 0 : printed_top + 1;
+    if (Status s = run_layers(**one, cascade, lo, report); !s) return s;
+    printed_top = std::max(printed_top, pass.top_mm);
+  }
+  return ok_status();
+}
+
 // The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
 // angles, then every layer planned and written.
 Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngleScript* script,
@@ -186,8 +217,18 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
   lo.exact_cells = options.exact_cells;
   lo.preview = outputs->preview.get();
   lo.rules = rules;
+  const bool sequential =
+      in.print.props[schema::PropId::PrintOrder] == static_cast<double>(schema::PrintOrder::Sequential) &&
+      (*setup)->objects.size() > 1;
   progress.start("toolpaths", layers.size());
-  if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();
+  if (!sequential) {
+    if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();
+  } else {
+    if (Status s = print_sequential(in, **setup, lo, script, cascade, options, report); !s) return s.error();
+    lo.gcode = nullptr;  // the exports and the preview still show the layers in z order
+    if (lo.svg || lo.json || lo.preview)
+      if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();
+  }
   summary.layers = static_cast<int>(layers.size());
   std::string detail;
   if (outputs->gcode) {

@@ -88,6 +88,7 @@ enum class Border : uint8_t { None, Real, Artificial };
 enum class Flavor : uint8_t { Marlin, Klipper, RepRapFirmware };
 enum class Seam : uint8_t { Aligned, Nearest, Rear };
 enum class BedShape : uint8_t { Rectangular, Circular };
+enum class PrintOrder : uint8_t { Layers, Sequential };
 
 struct FieldInfo {
   FieldId id;

@@ -221,6 +221,56 @@ TEST_CASE("plate e2e: a delta's round bed centred on 0: the model lands on 0, 0"
   CHECK_FALSE(app::slice(o, report).ok());
 }
 
+TEST_CASE("plate e2e: print_order = sequential prints each object whole, lowest first, rising between them") {
+  test::TempDir dir("plate-sequential");
+  plate::PlateOptions p;
+  p.files = {(dir / "tall.stl").string(), (dir / "low.stl").string()};
+  REQUIRE(geo::write_stl_binary(p.files[0], geo::box({15, 15, 6})).ok());
+  REQUIRE(geo::write_stl_binary(p.files[1], geo::box({15, 15, 4})).ok());
+  p.arrange = plate::ArrangeMode::Always;
+  p.spacing_mm = 50;
+  pipeline::SliceOptions o = options(dir);
+  o.model = p.files[0];
+  o.sets = {{"print_order", "sequential"}, {"skirt_loops", "0"}};
+  Report report;
+  auto r = app::slice(o, p, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  auto g = test::read_gcode(o.output_gcode);
+  // z climbs to the low object's top, falls back to the first layer, then climbs to the tall one's.
+  std::vector<double> z;
+  for (const auto& line : g.lines)
+    if (line.rfind(";Z:", 0) == 0) z.push_back(std::stod(line.substr(3)));
+  REQUIRE(z.size() == 20 + 30);
+  CHECK(z[19] == doctest::Approx(4));
+  CHECK(z[20] == doctest::Approx(0.2));
+  CHECK(z.back() == doctest::Approx(6));
+  // Between them the head rises above the low object before it crosses.
+  CHECK(g.contains("; next object: up, across, then down at its first point\nG92 E0\nG1 E-0.8 F2100\nG1 Z5 F9000\n"));
+  // Each object's extrusions are all on one side of the object change: the low one's before it.
+  size_t change = 0;
+  for (size_t k = 0; k < g.lines.size(); ++k)
+    if (g.lines[k].rfind("; next object", 0) == 0) change = k;
+  REQUIRE(change > 0);
+  Box before, after;
+  for (const auto& m : g.moves)
+    if (m.has_xy && m.de > 0) (m.line < change ? before : after).add(m.x, m.y);
+  CHECK(before.w() < 16);  // one 15 mm object each
+  CHECK(after.w() < 16);
+  CHECK(std::abs(0.5 * (before.min_x + before.max_x) - 0.5 * (after.min_x + after.max_x)) > 50);
+  // Too close for the head's reach: refused, naming both.
+  p.spacing_mm = 6;
+  auto close = app::slice(o, p, report);
+  REQUIRE_FALSE(close.ok());
+  CHECK(has(close.error().message, "'tall' and 'low' are"));
+  CHECK(has(close.error().message, "extruder_clearance_radius"));
+  // Lower than the gantry, but the low one is not: refused.
+  p.spacing_mm = 50;
+  o.sets.push_back({"extruder_clearance_height", "3"});
+  auto gantry = app::slice(o, p, report);
+  REQUIRE_FALSE(gantry.ok());
+  CHECK(has(gantry.error().message, "'low' is 4.0 mm tall and 'tall' is printed after it"));
+}
+
 TEST_CASE("plate e2e: OBJ input, copies and a turn") {
   test::TempDir dir("plate-obj");
   std::ofstream(dir / "bar.obj") << "v 0 0 0\nv 30 0 0\nv 30 8 0\nv 0 8 0\nv 0 0 3\nv 30 0 3\nv 30 8 3\nv 0 8 3\n"
