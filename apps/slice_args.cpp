@@ -30,6 +30,8 @@ constexpr Spec kOptions[] = {
     {"--export-layers", "FILE", "a file name", "write every layer as JSON: its islands and the paths printed on them"},
     {"--export-preview", "FILE", "a file name",
      "write the toolpaths as one HTML page: layers, colours by kind, speed,\nflow, width, fan or deciding rule, and why each path is as it is"},
+    {"--thumbnails", "SIZES", "sizes like 16x16/QOI,220x124/PNG",
+     "pictures of the print in the G-code for the printer's screen, e.g.\n16x16/QOI,220x124/PNG (overrides the thumbnails property; none: none)"},
     {"--exact-cells", nullptr, nullptr,
      "the exports also show each island's exact monotone cells (the\nseed's decomposition: an analysis view, not what is printed)"},
     {"--overlap", "MODE", "additive, boolean or subtractive", "additive (default), boolean, or subtractive (SVG only)"},
@@ -148,6 +150,7 @@ Status slice_values(const Values& v, pipeline::SliceOptions& o) {
   if (v.given("--export-svg")) o.export_svg = v.last("--export-svg");
   if (v.given("--export-layers")) o.export_layers = v.last("--export-layers");
   if (v.given("--export-preview")) o.export_preview = v.last("--export-preview");
+  if (v.given("--thumbnails")) o.thumbnails = v.last("--thumbnails");
   if (v.given("--overlap")) {
     const std::string& m = v.last("--overlap");
     if (m == "additive") o.overlap = OverlapMode::Additive;

@@ -23,6 +23,7 @@ struct GcodeInfo {
   std::string model_name;
   std::vector<std::pair<std::string, std::string>> sets;  // --set as given, for the header
   std::vector<std::string> notes;                         // more header lines (profile, rules files)
+  std::string thumbnails;  // the thumbnail comment blocks (geometry/preview/thumbnails.h), or empty
 };
 
 struct GcodeSummary {

@@ -15,6 +15,7 @@
 #include "geometry/pipeline/progress.h"
 #include "geometry/pipeline/sequential.h"
 #include "geometry/preview/preview_html.h"
+#include "geometry/preview/thumbnails.h"
 #include "geometry/polygon/layers.h"
 #include "geometry/setup/print_setup.h"
 #include "geometry/slice/layer_heights.h"
@@ -119,11 +120,42 @@ struct Outputs {
   exports::Sheet sheet;
 };
 
+// The thumbnails the G-code carries (--thumbnails, else the `thumbnails` property), drawn from the
+// sliced islands as they will sit on the bed: a top view, shaded by height.
+Result<std::string> thumbnails(const SliceOptions& o, const setup::PrintSetup& setup,
+                               const std::vector<geo::Layer>& resolved) {
+  std::string specs = o.thumbnails;
+  if (specs.empty()) {
+    const auto t = static_cast<schema::Thumbnails>(static_cast<int>(setup.print_props[schema::PropId::Thumbnails]));
+    if (t == schema::Thumbnails::Png) specs = "16x16/PNG, 220x124/PNG";
+    if (t == schema::Thumbnails::Qoi) specs = "16x16/QOI, 313x173/QOI, 440x240/QOI";
+  }
+  if (specs.empty() || specs == "none") return std::string();
+  auto parsed = preview::parse_thumbnail_specs(specs);
+  if (!parsed) return Error{"--thumbnails", parsed.error().message};
+  const double dx = geo::to_mm(setup.shift.X), dy = geo::to_mm(setup.shift.Y);
+  preview::BoxMm box{1e30f, 1e30f, -1e30f, -1e30f};
+  for (const auto& l : resolved)
+    for (const auto& isl : l.islands)
+      for (const auto& p : isl.shape.outer) {
+        const auto x = static_cast<float>(geo::to_mm(p.X) + dx), y = static_cast<float>(geo::to_mm(p.Y) + dy);
+        box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+      }
+  if (box.empty()) return std::string();
+  return preview::thumbnails_gcode(
+      box, [&](preview::HeightCanvas& c) {
+        for (const auto& l : resolved) c.add_layer(l, dx, dy);
+      }, *parsed);
+}
+
 Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& setup, const ctx::Cascade& cascade,
                              const std::vector<geo::Layer>& resolved) {
   Outputs out;
   if (!o.output_gcode.empty()) {
     gcode::GcodeInfo info;
+    auto pictures = thumbnails(o, setup, resolved);
+    if (!pictures) return pictures.error();
+    info.thumbnails = std::move(*pictures);
     info.model_name = o.model;
     info.sets = o.sets;
     if (o.profile)

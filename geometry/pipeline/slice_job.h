@@ -30,6 +30,7 @@ struct SliceOptions {
   std::string export_layers;                // --export-layers (JSON)
   bool exact_cells = false;                 // --exact-cells: the exports also show the exact cells (analysis)
   std::string export_preview;               // --export-preview (HTML)
+  std::string thumbnails;                   // --thumbnails "16x16/QOI, 220x124/PNG": overrides the property
   OverlapMode overlap = OverlapMode::Additive;
   std::string fill_angle_script;            // --fill-angle-script (Python)
   int svg_layers = 0;                       // --svg-layers: flat SVG layer count (0: 10, or --svg-height)

@@ -444,3 +444,47 @@ SCENARIO("a failing write leaves no file behind") {
   }
   CHECK(others == 0);
 }
+
+TEST_CASE("thumbnails: PNG pictures of the print in PrusaSlicer's format, of the declared size, not blank") {
+  test::TempDir dir("thumbnails");
+  pipeline::SliceOptions o;
+  o.quiet = true;
+  o.model = (dir / "cube.stl").string();
+  REQUIRE(geo::write_stl_binary(o.model, geo::box({20, 10, 5})).ok());
+  o.output_gcode = (dir / "cube.gcode").string();
+  o.thumbnails = "16x16/PNG, 220x124/PNG";
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+  const std::string g = test::read_file(o.output_gcode);
+  for (const char* size : {"16x16", "220x124"}) {
+    const size_t at = g.find(std::string("; thumbnail begin ") + size + " ");
+    REQUIRE(at != std::string::npos);
+    CHECK(at < g.find(";LAYER:0"));
+    const size_t end = g.find("; thumbnail end", at);
+    REQUIRE(end != std::string::npos);
+    // Lines of at most 78 base64 characters after "; "; the count in the header is their total.
+    std::string data;
+    size_t line = g.find('\n', at) + 1;
+    for (size_t next; line < end; line = next + 1) {
+      next = g.find('\n', line);
+      CHECK(next - line <= 80);
+      data += g.substr(line + 2, next - line - 2);
+    }
+    const size_t declared = std::stoul(g.substr(g.find(' ', at + 18) + 1));
+    CHECK(data.size() == declared);
+    CHECK(data.rfind("iVBORw0KGgo", 0) == 0);  // the PNG signature, base64
+  }
+  // The printer profile decides without the option; "none" removes them.
+  o.thumbnails = "none";
+  REQUIRE(app::slice(o, report).ok());
+  CHECK(test::read_file(o.output_gcode).find("thumbnail begin") == std::string::npos);
+  o.thumbnails.clear();
+  o.printer = "prusa-mk3s";
+  REQUIRE(app::slice(o, report).ok());
+  CHECK(test::read_file(o.output_gcode).find("; thumbnail begin 220x124 ") != std::string::npos);
+  o.thumbnails = "16x16/JPG";
+  auto bad = app::slice(o, report);
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().where == "--thumbnails");
+}

@@ -69,7 +69,7 @@ TEST_CASE("the G-code writer: a small cube gives a complete file with header val
   test::TempDir dir("gcode-cube");
   test::PrintFixture f(test::prism_layers(10, {test::square_mm(0, 0, 10, 10)}), {}, {{"skirt_loops", "0"}});
   const std::string out = (dir / "cube.gcode").string();
-  auto w = GcodeWriter::open(out, *f.setup, f.cascade->executors(), GcodeInfo{"cube", {}, {}});
+  auto w = GcodeWriter::open(out, *f.setup, f.cascade->executors(), GcodeInfo{"cube", {}, {}, {}});
   REQUIRE(w.ok());
   for (int i = 0; i < 10; ++i) {
     auto plan = f.plan(i);
