@@ -19,12 +19,6 @@ namespace {
 
 constexpr std::array<std::string_view, 6> kLevels = {"print", "layer", "island", "cell", "path", "piece"};
 
-std::optional<schema::Level> level_named(std::string_view n) {
-  for (size_t i = 0; i < kLevels.size(); ++i)
-    if (kLevels[i] == n) return static_cast<schema::Level>(i);
-  return std::nullopt;
-}
-
 // Fields another layer gives through `below`, `above` and `layers[i]`.
 bool other_layer_readable(schema::FieldId f) {
   using F = schema::FieldId;
