@@ -101,9 +101,11 @@ void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int n
     case StmtKind::Retract:
       if (!replace)
         sink_
-            .error("E0401", s.span, "`retract` is only allowed in a replacer", fmt::format("inside `{}`", where))
-            .help("the slicer retracts before the travels that need it; a replacer that moves on its own "
-                  "says where with `retract`");
+            .error("E0401", s.span, "`retract` is only allowed in a replacer",
+                   fmt::format("inside `{}`", where))
+            .help(
+                "the slicer retracts before the travels that need it; a replacer that moves on its own "
+                "says where with `retract`");
       emitted = true;
       return;
     case StmtKind::Offset:
@@ -137,7 +139,8 @@ void Checker::if_statement(Stmt& s, Stmt& action, std::vector<Local>& locals, in
 
 // `offset` and `reverse`: only in a replacer, at its top, before anything it prints; an offset
 // is a length read when the element is decided.
-void Checker::alteration(Stmt& s, Stmt& action, int nesting, bool emitted, ExprContext& ctx, const char* where) {
+void Checker::alteration(Stmt& s, Stmt& action, int nesting, bool emitted, ExprContext& ctx,
+                         const char* where) {
   const bool replace = action.kind == StmtKind::Replace;
   const char* word = s.kind == StmtKind::Offset ? "offset" : "reverse";
   if (!replace) {

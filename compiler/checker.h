@@ -50,6 +50,8 @@ struct Dependency {
   const ast::Rule* rule;
 };
 
+struct FuncInfo;  // a built-in function (check_names.cpp)
+
 // Shared by the checker's files (check_rules.cpp).
 // The level a name such as `layer` or `island` names, if any.
 std::optional<schema::Level> level_named(std::string_view name);
@@ -75,10 +77,18 @@ class Checker {
   friend class StageChecker;
   // check_names.cpp
   ast::Type name(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
+  ast::Type local_value(ast::Expr& e, Local& local);
+  ast::Type misplaced_enum(ast::Expr& e, const schema::EnumInfo& info, schema::EnumType hint);
+  ast::Type unknown_name(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
   ast::Type member(ast::Expr& e, ExprContext& ctx);
+  ast::Type element_field(ast::Expr& e, Local& local);
+  ast::Type level_field(ast::Expr& e);
+  ast::Type unknown_level(ast::Expr& e, ExprContext& ctx);
   ast::Type layer_access(ast::Expr& e, ExprContext& ctx);
   ast::Type other_layer_field(ast::Expr& e, const ast::Span& object_span);
   ast::Type call(ast::Expr& e, ExprContext& ctx);
+  bool call_arguments(ast::Expr& e, const FuncInfo& fn, const std::vector<ast::Type>& args);
+  ast::Type call_result(ast::Expr& e, const FuncInfo& fn, const std::vector<ast::Type>& args);
   ast::Type property_ref(ast::Expr& e, schema::PropId id);
   Local* find_local(ExprContext& ctx, std::string_view name);
   // check_expr.cpp

@@ -119,7 +119,8 @@ void Checker::fold(Expr& e) {
     case ExprKind::Binary:
       // A constant zero divisor is an error even when the dividend is not constant.
       if ((e.op == Op::Div || e.op == Op::Mod) && c(1) == 0.0)
-        return no_value(e.args[1]->span, e.op == Op::Div ? "division by zero" : "remainder of a division by zero",
+        return no_value(e.args[1]->span,
+                        e.op == Op::Div ? "division by zero" : "remainder of a division by zero",
                         "this is zero");
       if (all()) v = fold_binary(e.op, *c(0), *c(1));
       break;
