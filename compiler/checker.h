@@ -52,7 +52,7 @@ struct Dependency {
 
 struct FuncInfo;  // a built-in function (check_names.cpp)
 
-// Shared by the checker's files (check_rules.cpp).
+// Shared by the checker's files (defined in check_rules.cpp).
 // The level a name such as `layer` or `island` names, if any.
 std::optional<schema::Level> level_named(std::string_view name);
 // Whether `s` lies in a user's file (warnings are for those, not for the stdlib).
@@ -107,13 +107,13 @@ class Checker {
   void modifier(ast::Rule& r, ast::Stmt& s);
   void hook(ast::Rule& r, ast::Stmt& s, bool replace);
   void conjuncts(ast::Rule& r);
+  // check_body.cpp: statements in hook and replacer bodies
   void statements(std::vector<ast::StmtPtr>& body, ast::Stmt& action, std::vector<Local>& locals,
                   int loop_depth, double loop_steps, bool& emitted);
   void statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
                  double loop_steps, bool& emitted);
   void loop(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth, double loop_steps,
             bool& emitted);
-  // check_body.cpp: statements in hook and replacer bodies
   void if_statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
                     double loop_steps, bool& emitted, ExprContext& ctx, const Limit& limit);
   void alteration(ast::Stmt& s, ast::Stmt& action, int loop_depth, bool emitted, ExprContext& ctx,
@@ -122,7 +122,7 @@ class Checker {
   void collection_loop(ast::Stmt& s, ast::Stmt& action, Local& var);
   void move(ast::Stmt& s, ExprContext& ctx);
   void text(ast::Template& t, ExprContext& ctx);
-  void placeholders(const ast::Template& t);
+  void placeholders(const ast::Template& t);  // check_values.cpp
   bool declare(std::vector<Local>& locals, Local local, ast::Stmt& action);
   void unused_locals(std::vector<Local>& locals, size_t from);
 
