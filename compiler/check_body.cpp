@@ -31,19 +31,26 @@ void Checker::statements(std::vector<ast::StmtPtr>& body, Stmt& action, std::vec
   locals.resize(mark);
 }
 
-void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int nesting, double loop_steps,
-                        bool& emitted) {
-  bool replace = action.kind == StmtKind::Replace;
-  ExprContext ctx;
-  ctx.where = ExprContext::Where::Body;
-  ctx.locals = &locals;
+// What the statements of `action` (a hook or replacer body) may read.
+Limit Checker::body_limit(const Stmt& action) const {
   ast::Slot body_slot;
   body_slot.kind = ast::SlotKind::Hook;
   body_slot.level = action.level;
   body_slot.when = action.when;
   body_slot.action = &action;
   Limit limit = limit_for(body_slot, *rule_);
-  if (replace) limit.what = fmt::format("`replace {}` runs once per {}", action.name, action.name);
+  if (action.kind == StmtKind::Replace)
+    limit.what = fmt::format("`replace {}` runs once per {}", action.name, action.name);
+  return limit;
+}
+
+void Checker::statement(Stmt& s, Stmt& action, std::vector<Local>& locals, int nesting, double loop_steps,
+                        bool& emitted) {
+  bool replace = action.kind == StmtKind::Replace;
+  ExprContext ctx;
+  ctx.where = ExprContext::Where::Body;
+  ctx.locals = &locals;
+  const Limit limit = body_limit(action);
   const char* where = replace ? "replace" : action.when == ast::When::Before ? "before" : "after";
   switch (s.kind) {
     case StmtKind::Assign:

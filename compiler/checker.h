@@ -114,6 +114,7 @@ class Checker {
                  double loop_steps, bool& emitted);
   void loop(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth, double loop_steps,
             bool& emitted);
+  Limit body_limit(const ast::Stmt& action) const;
   void if_statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
                     double loop_steps, bool& emitted, ExprContext& ctx, const Limit& limit);
   void alteration(ast::Stmt& s, ast::Stmt& action, int loop_depth, bool emitted, ExprContext& ctx,
