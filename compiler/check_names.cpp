@@ -15,15 +15,17 @@ using ast::RefKind;
 using ast::Type;
 using ast::Unit;
 
+// A built-in function (checker.h declares it for Checker::call_result).
+struct FuncInfo {
+  std::string_view name;
+  ast::Func id;
+  size_t min_args, max_args;
+  std::string_view signature;
+};
+
 namespace {
 
 constexpr std::array<std::string_view, 6> kLevels = {"print", "layer", "island", "cell", "path", "piece"};
-
-std::optional<schema::Level> level_named(std::string_view n) {
-  for (size_t i = 0; i < kLevels.size(); ++i)
-    if (kLevels[i] == n) return static_cast<schema::Level>(i);
-  return std::nullopt;
-}
 
 // Fields another layer gives through `below`, `above` and `layers[i]`.
 bool other_layer_readable(schema::FieldId f) {
@@ -46,12 +48,6 @@ std::vector<std::string> property_names() {
   return out;
 }
 
-struct FuncInfo {
-  std::string_view name;
-  ast::Func id;
-  size_t min_args, max_args;
-  std::string_view signature;
-};
 constexpr FuncInfo kFuncs[] = {
     {"min", ast::Func::Min, 2, 64, "min(a, b, ...)"},
     {"max", ast::Func::Max, 2, 64, "max(a, b, ...)"},
@@ -96,6 +92,53 @@ Type Checker::property_ref(Expr& e, schema::PropId id) {
   return Type::of(p.type, p.unit, p.enum_type);
 }
 
+// A `let` or loop variable read as a value (a point, piece or island is not one).
+Type Checker::local_value(Expr& e, Local& local) {
+  const std::string& n = e.text;
+  Local* l = &local;
+  l->used = true;
+  if (l->element != ast::Element::None && l->element != ast::Element::Int) {
+    static const char* what[] = {"", "", "a point", "a piece", "an island"};
+    static const char* example[] = {"", "", "`{0}.x`, `{0}.y`", "`{0}.length`, `{0}.overhang`", "`{0}.area`"};
+    size_t k = static_cast<size_t>(l->element);
+    sink_
+        .error("E0201", e.span, fmt::format("`{}` is {}, not a value", n, what[k]),
+               "has fields, but no value")
+        .label(l->span, "defined here")
+        .help(fmt::format(fmt::runtime(std::string("read one of its fields, like ") + example[k]), n));
+    return Type::error();
+  }
+  e.ref = RefKind::Local;
+  e.local = l->slot;
+  return l->type;
+}
+
+// An enum value where its enum is not expected (`hint` names the one that is, if any).
+Type Checker::misplaced_enum(Expr& e, const schema::EnumInfo& info, schema::EnumType hint) {
+  const std::string& n = e.text;
+  if (hint != schema::EnumType::None) {
+    const auto& want = schema::enum_info(hint);
+    std::vector<std::string> values(want.values.begin(), want.values.end());
+    sink_
+        .error("E0204", e.span,
+               fmt::format("`{}` is a `{}` value, not a `{}` value", n, info.name, want.name),
+               fmt::format("not a `{}` value", want.name))
+        .note(fmt::format("`{}` values are {}", want.name, quoted_list(values, 12)));
+  } else {
+    std::string example;
+    for (const auto& f : schema::fields())
+      if (f.enum_type == info.id) {
+        example = std::string(f.name);
+        break;
+      }
+    auto& d =
+        sink_.error("E0204", e.span, fmt::format("`{}` is a `{}` value, not something to read", n, info.name),
+                    "an enum value on its own");
+    if (!example.empty()) d.help(fmt::format("compare a field with it: `{} == {}`", example, n));
+  }
+  return Type::error();
+}
+
 Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
   const std::string& n = e.text;
   if (hint != schema::EnumType::None) {
@@ -112,54 +155,22 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
     e.local = static_cast<int>(k);
     return Type::integer();
   }
-  if (Local* l = find_local(ctx, n)) {
-    l->used = true;
-    if (l->element != ast::Element::None && l->element != ast::Element::Int) {
-      static const char* what[] = {"", "", "a point", "a piece", "an island"};
-      static const char* example[] = {"", "", "`{0}.x`, `{0}.y`", "`{0}.length`, `{0}.overhang`",
-                                      "`{0}.area`"};
-      size_t k = static_cast<size_t>(l->element);
-      sink_
-          .error("E0201", e.span, fmt::format("`{}` is {}, not a value", n, what[k]),
-                 "has fields, but no value")
-          .label(l->span, "defined here")
-          .help(fmt::format(fmt::runtime(std::string("read one of its fields, like ") + example[k]), n));
-      return Type::error();
-    }
-    e.ref = RefKind::Local;
-    e.local = l->slot;
-    return l->type;
-  }
+  if (Local* l = find_local(ctx, n)) return local_value(e, *l);
   if (auto p = schema::find_property(n)) return property_ref(e, *p);
   if (auto it = params_.find(n); it != params_.end()) {
     e.constant = it->second.value;
     e.from_param = true;
     return it->second.type;
   }
-  for (const auto& info : schema::enums()) {
-    if (info.id == schema::EnumType::None || !schema::find_enum_value(info.id, n)) continue;
-    if (hint != schema::EnumType::None) {
-      const auto& want = schema::enum_info(hint);
-      std::vector<std::string> values(want.values.begin(), want.values.end());
-      sink_
-          .error("E0204", e.span,
-                 fmt::format("`{}` is a `{}` value, not a `{}` value", n, info.name, want.name),
-                 fmt::format("not a `{}` value", want.name))
-          .note(fmt::format("`{}` values are {}", want.name, quoted_list(values, 12)));
-    } else {
-      std::string example;
-      for (const auto& f : schema::fields())
-        if (f.enum_type == info.id) {
-          example = std::string(f.name);
-          break;
-        }
-      auto& d = sink_.error("E0204", e.span,
-                            fmt::format("`{}` is a `{}` value, not something to read", n, info.name),
-                            "an enum value on its own");
-      if (!example.empty()) d.help(fmt::format("compare a field with it: `{} == {}`", example, n));
-    }
-    return Type::error();
-  }
+  for (const auto& info : schema::enums())
+    if (info.id != schema::EnumType::None && schema::find_enum_value(info.id, n))
+      return misplaced_enum(e, info, hint);
+  return unknown_name(e, ctx, hint);
+}
+
+// A name that is nothing known: suggestions, other slicers' names, levels, `True`.
+Type Checker::unknown_name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
+  const std::string& n = e.text;
   if (hint != schema::EnumType::None) {
     const auto& want = schema::enum_info(hint);
     std::vector<std::string> values(want.values.begin(), want.values.end());
@@ -204,79 +215,91 @@ Type Checker::name(Expr& e, ExprContext& ctx, schema::EnumType hint) {
   return Type::error();
 }
 
+// A field of a loop variable: `p.x`, `pc.overhang`, `i.area`.
+Type Checker::element_field(Expr& e, Local& local) {
+  const std::string& obj = e.text;
+  const std::string& m = e.member;
+  Local* l = &local;
+  l->used = true;
+  e.ref = RefKind::ElementField;
+  e.local = l->slot;
+  e.element = l->element;
+  switch (l->element) {
+    case ast::Element::Point:
+      if (m == "x" || m == "y") {
+        e.point_field = m == "x" ? ast::PointField::X : ast::PointField::Y;
+        return Type::number(Unit{1, 0, 0, 0});
+      }
+      if (m == "index") {
+        e.point_field = ast::PointField::Index;
+        return Type::integer();
+      }
+      sink_
+          .error("E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
+                 "not a field of a point")
+          .note("a point has `x`, `y` and `index`");
+      return Type::error();
+    case ast::Element::Piece:
+    case ast::Element::Island: {
+      std::string prefix = l->element == ast::Element::Piece ? "piece." : "island.";
+      if (auto f = schema::find_field(prefix + m)) {
+        e.field = *f;
+        const auto& info = schema::field(*f);
+        return Type::of(info.type, info.unit, info.enum_type);
+      }
+      auto& d = sink_.error(
+          "E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
+          fmt::format("not a field of {}", l->element == ast::Element::Piece ? "a piece" : "an island"));
+      if (auto best = suggest(obj + "." + m, fields_of(prefix, obj + ".")))
+        d.did_you_mean(join(e.text_span, e.member_span), *best);
+      return Type::error();
+    }
+    default:
+      e.ref = RefKind::None;
+      sink_.error("E0102", e.member_span, fmt::format("`{}` has no fields", obj), "not a field")
+          .label(l->span, "a number, defined here");
+      return Type::error();
+  }
+}
+
+// `level.field` (and `object.index`): a field of the print, layer, island, cell, path or piece.
+Type Checker::level_field(Expr& e) {
+  const std::string& obj = e.text;
+  const std::string& m = e.member;
+  std::string full = obj + "." + m;
+  if (auto f = schema::find_field(full)) {
+    const auto& info = schema::field(*f);
+    e.ref = RefKind::Field;
+    e.field = *f;
+    e.stage = info.stage;
+    e.level = info.level;
+    return Type::of(info.type, info.unit, info.enum_type);
+  }
+  if (full == "path.points") {
+    sink_.error("E0102", e.span, "`path.points` is a list of points, not a value", "a list")
+        .help("loop over it: `for p in path.points { ... }`");
+    return Type::error();
+  }
+  auto& d = sink_.error("E0102", e.span, fmt::format("unknown field `{}`", full),
+                        fmt::format("not a field of `{}`", obj));
+  if (auto same = field_synonym(obj, m)) {
+    d.did_you_mean(join(e.text_span, e.member_span), std::string(*same));
+    if (*same == "path.kind")
+      d.note("what other slicers call a path's feature type or extrusion role is `path.kind`");
+  } else if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
+    d.did_you_mean(join(e.text_span, e.member_span), *best);
+  } else if (schema::find_property(m)) {
+    d.help(fmt::format("`{}` is a property: write `{}`", m, m));
+  }
+  return Type::error();
+}
+
 Type Checker::member(Expr& e, ExprContext& ctx) {
   const std::string& obj = e.text;
   const std::string& m = e.member;
-  if (Local* l = find_local(ctx, obj)) {
-    l->used = true;
-    e.ref = RefKind::ElementField;
-    e.local = l->slot;
-    e.element = l->element;
-    switch (l->element) {
-      case ast::Element::Point:
-        if (m == "x" || m == "y") {
-          e.point_field = m == "x" ? ast::PointField::X : ast::PointField::Y;
-          return Type::number(Unit{1, 0, 0, 0});
-        }
-        if (m == "index") {
-          e.point_field = ast::PointField::Index;
-          return Type::integer();
-        }
-        sink_
-            .error("E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
-                   "not a field of a point")
-            .note("a point has `x`, `y` and `index`");
-        return Type::error();
-      case ast::Element::Piece:
-      case ast::Element::Island: {
-        std::string prefix = l->element == ast::Element::Piece ? "piece." : "island.";
-        if (auto f = schema::find_field(prefix + m)) {
-          e.field = *f;
-          const auto& info = schema::field(*f);
-          return Type::of(info.type, info.unit, info.enum_type);
-        }
-        auto& d = sink_.error(
-            "E0102", e.member_span, fmt::format("unknown field `{}.{}`", obj, m),
-            fmt::format("not a field of {}", l->element == ast::Element::Piece ? "a piece" : "an island"));
-        if (auto best = suggest(obj + "." + m, fields_of(prefix, obj + ".")))
-          d.did_you_mean(join(e.text_span, e.member_span), *best);
-        return Type::error();
-      }
-      default:
-        e.ref = RefKind::None;
-        sink_.error("E0102", e.member_span, fmt::format("`{}` has no fields", obj), "not a field")
-            .label(l->span, "a number, defined here");
-        return Type::error();
-    }
-  }
+  if (Local* l = find_local(ctx, obj)) return element_field(e, *l);
   // `object.index`: an island's object, known with the island.
-  if (auto level = obj == "object" ? std::optional<schema::Level>(schema::Level::Island) : level_named(obj)) {
-    std::string full = obj + "." + m;
-    if (auto f = schema::find_field(full)) {
-      const auto& info = schema::field(*f);
-      e.ref = RefKind::Field;
-      e.field = *f;
-      e.stage = info.stage;
-      e.level = info.level;
-      return Type::of(info.type, info.unit, info.enum_type);
-    }
-    if (full == "path.points") {
-      sink_.error("E0102", e.span, "`path.points` is a list of points, not a value", "a list")
-          .help("loop over it: `for p in path.points { ... }`");
-      return Type::error();
-    }
-    auto& d = sink_.error("E0102", e.span, fmt::format("unknown field `{}`", full),
-                          fmt::format("not a field of `{}`", obj));
-    if (auto same = field_synonym(obj, m)) {
-      d.did_you_mean(join(e.text_span, e.member_span), std::string(*same));
-      if (*same == "path.kind") d.note("what other slicers call a path's feature type or extrusion role is `path.kind`");
-    } else if (auto best = suggest(full, fields_of(obj + ".", obj + "."))) {
-      d.did_you_mean(join(e.text_span, e.member_span), *best);
-    } else if (schema::find_property(m)) {
-      d.help(fmt::format("`{}` is a property: write `{}`", m, m));
-    }
-    return Type::error();
-  }
+  if (obj == "object" || level_named(obj)) return level_field(e);
   if (obj == "below" || obj == "above") {
     e.other = obj == "below" ? ast::OtherLayer::Below : ast::OtherLayer::Above;
     return other_layer_field(e, e.text_span);
@@ -286,6 +309,12 @@ Type Checker::member(Expr& e, ExprContext& ctx) {
         .help(fmt::format("write `layers[layer.index - 1].{}`, or `below.{}`", m, m));
     return Type::error();
   }
+  return unknown_level(e, ctx);
+}
+
+// `x.field` where x is no level, other layer or loop variable.
+Type Checker::unknown_level(Expr& e, ExprContext& ctx) {
+  const std::string& obj = e.text;
   std::vector<std::string> candidates(kLevels.begin(), kLevels.end());
   candidates.insert(candidates.end(), {"below", "above"});
   if (ctx.locals)
@@ -365,6 +394,13 @@ Type Checker::call(Expr& e, ExprContext& ctx) {
     return Type::error();
   }
   e.func = fn->id;
+  if (!call_arguments(e, *fn, args)) return Type::error();
+  return call_result(e, *fn, args);
+}
+
+// The number of arguments `fn` takes, each a number (E0109, E0201).
+bool Checker::call_arguments(Expr& e, const FuncInfo& function, const std::vector<Type>& args) {
+  const FuncInfo* fn = &function;
   if (args.size() < fn->min_args || args.size() > fn->max_args) {
     sink_
         .error("E0109", e.span,
@@ -374,16 +410,22 @@ Type Checker::call(Expr& e, ExprContext& ctx) {
                            fn->max_args == 1 ? "" : "s", args.size()),
                "wrong number of arguments")
         .note(fmt::format("`{}`", fn->signature));
-    return Type::error();
+    return false;
   }
   for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i].is_error()) return Type::error();
+    if (args[i].is_error()) return false;
     if (!args[i].numeric()) {
       sink_.error("E0201", e.args[i]->span,
                   fmt::format("`{}` needs numbers, found {}", fn->name, args[i].describe()), "not a number");
-      return Type::error();
+      return false;
     }
   }
+  return true;
+}
+
+// The type of a call of `fn` on arguments of types `args`, or a unit error (E0205).
+Type Checker::call_result(Expr& e, const FuncInfo& function, const std::vector<Type>& args) {
+  const FuncInfo* fn = &function;
   auto unit_error = [&](size_t i, std::string message) {
     sink_
         .error("E0205", e.args[i]->span, std::move(message),

@@ -9,21 +9,6 @@ using ast::Expr;
 using ast::Kind;
 using ast::Type;
 
-namespace {
-
-bool user_file(const ast::SourceMap& sources, const ast::Span& s) {
-  return s.file < sources.size() && sources.file(s.file).user;
-}
-
-std::optional<schema::Level> level_named(std::string_view n) {
-  static constexpr std::string_view names[] = {"print", "layer", "island", "cell", "path", "piece"};
-  for (size_t i = 0; i < std::size(names); ++i)
-    if (names[i] == n) return static_cast<schema::Level>(i);
-  return std::nullopt;
-}
-
-}  // namespace
-
 // `any(i in LO..HI: C)` / `all(...)`: C for each integer i of a constant range, at most
 // kMaxQuantifierSteps of them, so that a filter stays a bounded computation.
 Type Checker::quantifier(Expr& e, ExprContext& ctx) {

@@ -1,12 +1,14 @@
 // Internal to compiler/: the checker's state while it walks a program. check_expr.cpp types
-// expressions, check_names.cpp resolves references, check_rules.cpp handles rules and
-// statements, stages.cpp decides what each slot may read.
+// expressions (fold.cpp folds constants), check_names.cpp resolves references, check_rules.cpp
+// handles rules, check_body.cpp the statements of bodies, stages.cpp decides what each slot may
+// read.
 #pragma once
 
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "grammar/ast/ast.h"
@@ -48,6 +50,16 @@ struct Dependency {
   const ast::Rule* rule;
 };
 
+struct FuncInfo;  // a built-in function (check_names.cpp)
+
+// Shared by the checker's files (defined in check_rules.cpp).
+// The level a name such as `layer` or `island` names, if any.
+std::optional<schema::Level> level_named(std::string_view name);
+// Whether `s` lies in a user's file (warnings are for those, not for the stdlib).
+bool user_file(const ast::SourceMap& sources, const ast::Span& s);
+// A statement kind as messages name it: "an assignment", "`before`/`after`", ...
+std::string_view stmt_word(ast::StmtKind k);
+
 class Checker {
  public:
   Checker(ast::Program& program, diag::Sink& sink)
@@ -65,10 +77,18 @@ class Checker {
   friend class StageChecker;
   // check_names.cpp
   ast::Type name(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
+  ast::Type local_value(ast::Expr& e, Local& local);
+  ast::Type misplaced_enum(ast::Expr& e, const schema::EnumInfo& info, schema::EnumType hint);
+  ast::Type unknown_name(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
   ast::Type member(ast::Expr& e, ExprContext& ctx);
+  ast::Type element_field(ast::Expr& e, Local& local);
+  ast::Type level_field(ast::Expr& e);
+  ast::Type unknown_level(ast::Expr& e, ExprContext& ctx);
   ast::Type layer_access(ast::Expr& e, ExprContext& ctx);
   ast::Type other_layer_field(ast::Expr& e, const ast::Span& object_span);
   ast::Type call(ast::Expr& e, ExprContext& ctx);
+  bool call_arguments(ast::Expr& e, const FuncInfo& fn, const std::vector<ast::Type>& args);
+  ast::Type call_result(ast::Expr& e, const FuncInfo& fn, const std::vector<ast::Type>& args);
   ast::Type property_ref(ast::Expr& e, schema::PropId id);
   Local* find_local(ExprContext& ctx, std::string_view name);
   // check_expr.cpp
@@ -86,18 +106,26 @@ class Checker {
   void rule(ast::Rule& r);
   void modifier(ast::Rule& r, ast::Stmt& s);
   void hook(ast::Rule& r, ast::Stmt& s, bool replace);
+  void conjuncts(ast::Rule& r);
+  // check_body.cpp: statements in hook and replacer bodies
   void statements(std::vector<ast::StmtPtr>& body, ast::Stmt& action, std::vector<Local>& locals,
                   int loop_depth, double loop_steps, bool& emitted);
   void statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
                  double loop_steps, bool& emitted);
   void loop(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth, double loop_steps,
             bool& emitted);
+  Limit body_limit(const ast::Stmt& action) const;
+  void if_statement(ast::Stmt& s, ast::Stmt& action, std::vector<Local>& locals, int loop_depth,
+                    double loop_steps, bool& emitted, ExprContext& ctx, const Limit& limit);
+  void alteration(ast::Stmt& s, ast::Stmt& action, int loop_depth, bool emitted, ExprContext& ctx,
+                  const char* where);
+  double range_loop(ast::Stmt& s, Local& var, ExprContext& ctx, double loop_steps);
+  void collection_loop(ast::Stmt& s, ast::Stmt& action, Local& var);
   void move(ast::Stmt& s, ExprContext& ctx);
   void text(ast::Template& t, ExprContext& ctx);
-  void placeholders(const ast::Template& t);
+  void placeholders(const ast::Template& t);  // check_values.cpp
   bool declare(std::vector<Local>& locals, Local local, ast::Stmt& action);
   void unused_locals(std::vector<Local>& locals, size_t from);
-  void conjuncts(ast::Rule& r);
 
   // stages.cpp
   void require(const ast::Expr& e, const Limit& limit, const ast::Rule& r);

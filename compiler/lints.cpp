@@ -204,152 +204,186 @@ struct RuleFacts {
   std::optional<prover::Boxes> boxes;  // the filter as boxes; nothing = unknown
 };
 
+// The rules that can take a slot from an earlier rule (known filter, whole slot), latest first.
+struct Takers {
+  std::vector<size_t> rules;                  // descending cascade index
+  std::vector<const prover::Boxes*> filters;  // parallel
+};
+
+// What the cascade-wide lints share: each rule's filter as boxes and, per slot key, the rules
+// that set it in cascade order and those that can take it.
+struct CascadeFacts {
+  const ast::SourceMap& sources;
+  const std::vector<Rule*>& rules;
+  prover::Space space;
+  std::vector<RuleFacts> facts;
+  std::map<uint32_t, std::vector<size_t>> by_slot;
+  std::map<uint32_t, Takers> takers;
+
+  explicit CascadeFacts(const ast::Program& program) : sources(program.sources), rules(program.cascade) {
+    facts.resize(rules.size());
+    for (size_t i = 0; i < rules.size(); ++i) {
+      const Rule& r = *rules[i];
+      if (!r.filter)
+        facts[i].boxes = prover::Boxes{prover::Box{}};
+      else if (!r.filter->type.is_error())
+        facts[i].boxes = prover::to_boxes(*r.filter, space, sources, r.index);
+    }
+    for (size_t i = 0; i < rules.size(); ++i)
+      for (const auto& s : rules[i]->slots) by_slot[s.key()].push_back(i);
+    for (size_t i = rules.size(); i-- > 0;) {
+      std::set<uint32_t> seen;
+      for (const auto& s : rules[i]->slots) {
+        if (!seen.insert(s.key()).second || !facts[i].boxes || rules[i]->from_set || !takes_slot(s)) continue;
+        takers[s.key()].rules.push_back(i);
+        takers[s.key()].filters.push_back(&*facts[i].boxes);
+      }
+    }
+  }
+};
+
+// W211: two rules of one file with the same name.
+void duplicate_name(std::map<std::pair<uint32_t, std::string>, const Rule*>& names, const Rule& r,
+                    diag::Sink& sink) {
+  if (!r.has_name) return;
+  auto [it, fresh] = names.emplace(std::make_pair(r.span.file, r.name), &r);
+  if (!fresh)
+    sink.warning("W211", r.span, fmt::format("two rules are named \"{}\"", r.name),
+                 "second rule with this name")
+        .label(it->second->span, "first one")
+        .help("give each rule its own name: `rulec explain` and messages refer to rules by name");
+}
+
+// W203 (a constant filter), W202 (never true), W204 (always true) on rule i's filter. False when
+// the filter is constant or never true: the rule's slots are not worth analysing further.
+bool filter_lints(CascadeFacts& c, size_t i, diag::Sink& sink) {
+  const Rule& r = *c.rules[i];
+  if (!r.filter || r.filter->type.is_error()) return true;
+  if (r.filter->constant && r.filter->from_param) return false;  // a param switches it on or off: on purpose
+  if (r.filter->constant) {
+    bool always = *r.filter->constant != 0;
+    sink.warning("W203", r.filter->span, fmt::format("this filter is always {}", always ? "true" : "false"),
+                 "a constant")
+        .help(always ? "remove `when ...`: a rule without a filter always applies"
+                     : "remove the rule: it never applies");
+    return false;
+  }
+  if (c.facts[i].boxes && c.facts[i].boxes->empty()) {
+    sink.warning("W202", r.filter->span, "this filter can never be true", "no print element matches it")
+        .note("its conditions contradict each other, so the rule never applies");
+    return false;
+  }
+  auto negation = prover::to_boxes(*r.filter, c.space, c.sources, r.index, true);
+  if (negation && negation->empty()) {
+    auto& d = sink.warning("W204", r.filter->span, "this filter is always true", "matches every element");
+    d.help("remove `when ...` if that is intended; otherwise check the comparison");
+    for (const auto& s : r.slots) {
+      auto& list = c.by_slot[s.key()];
+      size_t shadowed = 0;
+      for (size_t j : list)
+        if (j < i) ++shadowed;
+      if (shadowed) {
+        d.note(fmt::format("it takes {} from every earlier rule that sets it", s.describe()));
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+// A slot of a rule that later rules always take, and which rules take it.
+struct Lost {
+  const ast::Slot* slot;
+  std::vector<size_t> by;
+};
+
+// W213: some of rule r's slots never take effect (each in `lost`).
+void lost_slots(const CascadeFacts& c, const Rule& r, std::vector<Lost>& lost, diag::Sink& sink) {
+  for (Lost& l : lost) {
+    std::sort(l.by.begin(), l.by.end());
+    l.by.erase(std::unique(l.by.begin(), l.by.end()), l.by.end());
+    const auto& at = l.slot->action ? l.slot->action->span : r.span;
+    auto& d = sink.warning(
+        "W213", at, fmt::format("{} in rule {} never takes effect", l.slot->describe(), r.display(c.sources)),
+        "always overridden by later rules");
+    for (size_t k = 0; k < l.by.size() && k < 4; ++k) {
+      const Rule& s = *c.rules[l.by[k]];
+      d.label(s.span, fmt::format("{} sets it too", s.display(c.sources)));
+    }
+    if (l.by.size() > 4) d.note(fmt::format("and {} more rules", l.by.size() - 4));
+    d.note(
+        fmt::format("wherever this rule matches, later rules also set {}: the last match wins; the "
+                    "rule's other settings still apply",
+                    l.slot->describe()));
+    d.help("remove this setting, or move the rule after the ones that override it");
+  }
+}
+
+// W201: every slot of rule r is taken by the later rules `shadowers` wherever r matches.
+void shadowed_rule(const CascadeFacts& c, const Rule& r, std::vector<size_t> shadowers, diag::Sink& sink) {
+  std::sort(shadowers.begin(), shadowers.end());
+  shadowers.erase(std::unique(shadowers.begin(), shadowers.end()), shadowers.end());
+  std::string slots;
+  for (size_t k = 0; k < r.slots.size(); ++k) slots += (k ? ", " : "") + r.slots[k].describe();
+  auto& d = sink.warning("W201", r.span, fmt::format("rule {} never takes effect", r.display(c.sources)),
+                         "always overridden by later rules");
+  for (size_t k = 0; k < shadowers.size() && k < 4; ++k) {
+    const Rule& s = *c.rules[shadowers[k]];
+    d.label(s.span, fmt::format("{} overrides it", s.display(c.sources)));
+  }
+  if (shadowers.size() > 4) d.note(fmt::format("and {} more rules", shadowers.size() - 4));
+  d.note(fmt::format("wherever it matches, later rules also match and set {}: the last match wins", slots));
+  d.help("remove it, or move it after the rules that override it");
+}
+
+// W201: every slot taken by later rules wherever rule i matches. W213: some of them.
+void shadowing(CascadeFacts& c, size_t i, diag::Sink& sink) {
+  const Rule& r = *c.rules[i];
+  if (r.slots.empty() || !c.facts[i].boxes || c.facts[i].boxes->empty()) return;
+  std::vector<size_t> shadowers;
+  std::vector<Lost> lost;
+  bool shadowed = true;
+  std::set<uint32_t> seen_slots;
+  for (const auto& slot : r.slots) {
+    if (!seen_slots.insert(slot.key()).second) continue;  // set twice in the rule: W208
+    // Latest first: a rule that still finds part of the region uncovered is the one that wins
+    // there, so the rules named are exactly those that take the slot from this one.
+    const Takers& t = c.takers[slot.key()];
+    size_t later = static_cast<size_t>(
+        std::partition_point(t.rules.begin(), t.rules.end(), [&](size_t j) { return j > i; }) -
+        t.rules.begin());
+    std::vector<size_t> used;
+    auto proof = later == 0
+                     ? std::optional<bool>(false)
+                     : prover::covered(*c.facts[i].boxes, std::span(t.filters.data(), later), c.space, &used);
+    if (!proof || !*proof) {
+      shadowed = false;
+      continue;
+    }
+    Lost l{&slot, {}};
+    for (size_t u : used) shadowers.push_back(t.rules[u]), l.by.push_back(t.rules[u]);
+    lost.push_back(std::move(l));
+  }
+  if (!shadowed)
+    lost_slots(c, r, lost, sink);
+  else
+    shadowed_rule(c, r, std::move(shadowers), sink);
+}
+
 }  // namespace
 
 void lint(const ast::Program& program, diag::Sink& sink) {
-  const ast::SourceMap& sources = program.sources;
-  const auto& rules = program.cascade;
-  prover::Space space;
-  std::vector<RuleFacts> facts(rules.size());
-  for (size_t i = 0; i < rules.size(); ++i) {
-    const Rule& r = *rules[i];
-    if (!r.filter)
-      facts[i].boxes = prover::Boxes{prover::Box{}};
-    else if (!r.filter->type.is_error())
-      facts[i].boxes = prover::to_boxes(*r.filter, space, sources, r.index);
-  }
-
-  // Per-file duplicate rule names (W211).
-  std::map<std::pair<uint32_t, std::string>, const Rule*> names;
-  // Slots: for each slot key, the rules that set it in cascade order, and the ones that can
-  // take it from an earlier rule (known filter, whole slot), latest first.
-  std::map<uint32_t, std::vector<size_t>> by_slot;
-  struct Takers {
-    std::vector<size_t> rules;                  // descending cascade index
-    std::vector<const prover::Boxes*> filters;  // parallel
-  };
-  std::map<uint32_t, Takers> takers;
-  for (size_t i = 0; i < rules.size(); ++i)
-    for (const auto& s : rules[i]->slots) by_slot[s.key()].push_back(i);
-  for (size_t i = rules.size(); i-- > 0;) {
-    std::set<uint32_t> seen;
-    for (const auto& s : rules[i]->slots) {
-      if (!seen.insert(s.key()).second || !facts[i].boxes || rules[i]->from_set || !takes_slot(s)) continue;
-      takers[s.key()].rules.push_back(i);
-      takers[s.key()].filters.push_back(&*facts[i].boxes);
-    }
-  }
-
-  for (size_t i = 0; i < rules.size(); ++i) {
-    const Rule& r = *rules[i];
-    if (!user_rule(sources, r)) continue;
-    if (r.has_name) {
-      auto [it, fresh] = names.emplace(std::make_pair(r.span.file, r.name), &r);
-      if (!fresh)
-        sink.warning("W211", r.span, fmt::format("two rules are named \"{}\"", r.name),
-                     "second rule with this name")
-            .label(it->second->span, "first one")
-            .help("give each rule its own name: `rulec explain` and messages refer to rules by name");
-    }
-    float_equality(sources, r, sink);
+  CascadeFacts cascade(program);
+  std::map<std::pair<uint32_t, std::string>, const Rule*> names;  // per file (W211)
+  for (size_t i = 0; i < cascade.rules.size(); ++i) {
+    const Rule& r = *cascade.rules[i];
+    if (!user_rule(program.sources, r)) continue;
+    duplicate_name(names, r, sink);
+    float_equality(program.sources, r, sink);
     ranges(r, sink);
-    edge_layers(sources, r, sink);
-
-    if (r.filter && !r.filter->type.is_error()) {
-      if (r.filter->constant && r.filter->from_param) continue;  // a param switches it on or off: on purpose
-      if (r.filter->constant) {
-        bool always = *r.filter->constant != 0;
-        sink.warning("W203", r.filter->span,
-                     fmt::format("this filter is always {}", always ? "true" : "false"), "a constant")
-            .help(always ? "remove `when ...`: a rule without a filter always applies"
-                         : "remove the rule: it never applies");
-        continue;
-      }
-      if (facts[i].boxes && facts[i].boxes->empty()) {
-        sink.warning("W202", r.filter->span, "this filter can never be true", "no print element matches it")
-            .note("its conditions contradict each other, so the rule never applies");
-        continue;
-      }
-      auto negation = prover::to_boxes(*r.filter, space, sources, r.index, true);
-      if (negation && negation->empty()) {
-        auto& d = sink.warning("W204", r.filter->span, "this filter is always true", "matches every element");
-        d.help("remove `when ...` if that is intended; otherwise check the comparison");
-        for (const auto& s : r.slots) {
-          auto& list = by_slot[s.key()];
-          size_t shadowed = 0;
-          for (size_t j : list)
-            if (j < i) ++shadowed;
-          if (shadowed) {
-            d.note(fmt::format("it takes {} from every earlier rule that sets it", s.describe()));
-            break;
-          }
-        }
-      }
-    }
-
-    // W201: every slot taken by later rules wherever this rule matches. W213: some of them.
-    if (r.slots.empty() || !facts[i].boxes || facts[i].boxes->empty()) continue;
-    std::vector<size_t> shadowers;
-    struct Lost {
-      const ast::Slot* slot;
-      std::vector<size_t> by;
-    };
-    std::vector<Lost> lost;
-    bool shadowed = true;
-    std::set<uint32_t> seen_slots;
-    for (const auto& slot : r.slots) {
-      if (!seen_slots.insert(slot.key()).second) continue;  // set twice in the rule: W208
-      // Latest first: a rule that still finds part of the region uncovered is the one that wins
-      // there, so the rules named are exactly those that take the slot from this one.
-      const Takers& t = takers[slot.key()];
-      size_t later = static_cast<size_t>(
-          std::partition_point(t.rules.begin(), t.rules.end(), [&](size_t j) { return j > i; }) -
-          t.rules.begin());
-      std::vector<size_t> used;
-      auto proof = later == 0 ? std::optional<bool>(false)
-                              : prover::covered(*facts[i].boxes, std::span(t.filters.data(), later), space, &used);
-      if (!proof || !*proof) {
-        shadowed = false;
-        continue;
-      }
-      Lost l{&slot, {}};
-      for (size_t u : used) shadowers.push_back(t.rules[u]), l.by.push_back(t.rules[u]);
-      lost.push_back(std::move(l));
-    }
-    if (!shadowed) {
-      for (Lost& l : lost) {
-        std::sort(l.by.begin(), l.by.end());
-        l.by.erase(std::unique(l.by.begin(), l.by.end()), l.by.end());
-        const auto& at = l.slot->action ? l.slot->action->span : r.span;
-        auto& d = sink.warning("W213", at,
-                               fmt::format("{} in rule {} never takes effect", l.slot->describe(), r.display(sources)),
-                               "always overridden by later rules");
-        for (size_t k = 0; k < l.by.size() && k < 4; ++k) {
-          const Rule& s = *rules[l.by[k]];
-          d.label(s.span, fmt::format("{} sets it too", s.display(sources)));
-        }
-        if (l.by.size() > 4) d.note(fmt::format("and {} more rules", l.by.size() - 4));
-        d.note(fmt::format("wherever this rule matches, later rules also set {}: the last match wins; the "
-                           "rule's other settings still apply",
-                           l.slot->describe()));
-        d.help("remove this setting, or move the rule after the ones that override it");
-      }
-      continue;
-    }
-    if (!shadowed) continue;
-    std::sort(shadowers.begin(), shadowers.end());
-    shadowers.erase(std::unique(shadowers.begin(), shadowers.end()), shadowers.end());
-    std::string slots;
-    for (size_t k = 0; k < r.slots.size(); ++k) slots += (k ? ", " : "") + r.slots[k].describe();
-    auto& d = sink.warning("W201", r.span, fmt::format("rule {} never takes effect", r.display(sources)),
-                           "always overridden by later rules");
-    for (size_t k = 0; k < shadowers.size() && k < 4; ++k) {
-      const Rule& s = *rules[shadowers[k]];
-      d.label(s.span, fmt::format("{} overrides it", s.display(sources)));
-    }
-    if (shadowers.size() > 4) d.note(fmt::format("and {} more rules", shadowers.size() - 4));
-    d.note(fmt::format("wherever it matches, later rules also match and set {}: the last match wins", slots));
-    d.help("remove it, or move it after the rules that override it");
+    edge_layers(program.sources, r, sink);
+    if (!filter_lints(cascade, i, sink)) continue;
+    shadowing(cascade, i, sink);
   }
 }
 

@@ -57,6 +57,8 @@ class AstBuilder : public RulesBaseVisitor {
   ast::StmtPtr if_stmt(RulesParser::IfStmtContext* ctx);
   ast::StmtPtr move(RulesParser::MoveStmtContext* ctx);
   bool text(antlr4::Token* token, ast::Template& out);
+  bool template_part(uint32_t open, uint32_t close, ast::Template& out);
+  bool template_error(uint32_t from, uint32_t to, std::string message, std::string label, std::string help);
   std::string name(RulesParser::NameContext* ctx, ast::Span* span);
   std::string string_value(antlr4::Token* token);
 

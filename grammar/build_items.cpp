@@ -263,10 +263,7 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
     literal.clear();
   };
   auto fail = [&](uint32_t from, uint32_t to, std::string message, std::string label, std::string help) {
-    failed_ = true;
-    auto& d = sink_.error("E0007", sources.span(in_.file(), from, to), std::move(message), std::move(label));
-    if (!help.empty()) d.help(std::move(help));
-    return false;
+    return template_error(from, to, std::move(message), std::move(label), std::move(help));
   };
   while (i < end) {
     char c = src[i];
@@ -286,43 +283,7 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
         return fail(i, i + 1, "unterminated `{` in template", "this `{` is never closed",
                     "close it with `}`, or write `{{` for a literal `{`");
       flush(i);
-      // The format's `:` is outside brackets (`{any(i in 1..2: ...):.0}` has one inside).
-      uint32_t colon = i + 1;
-      for (int depth = 0; colon < close && (src[colon] != ':' || depth > 0); ++colon)
-        depth += src[colon] == '(' ? 1 : src[colon] == ')' ? -1 : 0;
-      std::string_view inner(src.data() + i + 1, colon - i - 1);
-      std::string_view all(src.data() + i + 1, close - i - 1);
-      if (size_t k = all.find_first_not_of(" \t"); k != std::string_view::npos && (all[k] == '%' || all[k] == '#')) {
-        failed_ = true;
-        sink_
-            .error("E0008", sources.span(in_.file(), i, close + 1),
-                   fmt::format("Jinja's `{{{}` ... `{}}}` is not part of the rule language", all[k], all[k]),
-                   "a Klipper macro statement")
-            .help("decide in the executor: `if layer.index == 0 { gcode \"...\" } else { gcode \"...\" }`; a "
-                  "template only prints values: `{layer.z:.2}`");
-        return false;
-      }
-      if (inner.find_first_not_of(" \t\r\n") == std::string_view::npos)
-        return fail(i, close + 1, "empty `{}` in template", "nothing to print here",
-                    "put a value inside, like `{layer.index}`, or write `{{}}` for literal braces");
-      ast::TemplatePart p;
-      p.span = sources.span(in_.file(), i, close + 1);
-      if (colon < close) {
-        std::string_view fmt(src.data() + colon + 1, close - colon - 1);
-        bool good = fmt.size() >= 2 && fmt.size() <= 3 && fmt[0] == '.' &&
-                    fmt.find_first_not_of("0123456789", 1) == std::string_view::npos;
-        int decimals = good ? std::stoi(std::string(fmt.substr(1))) : -1;
-        if (!good || decimals > 12)
-          return fail(colon, close, fmt::format("unknown format `:{}` in template", fmt),
-                      "expected `:.N`, N decimals (0 to 12)", "write `{layer.z:.2}` for two decimals");
-        p.decimals = decimals;
-      }
-      p.expr = parse_expression(sources, in_.file(), i + 1, colon, sink_, options_);
-      if (!p.expr) {
-        failed_ = true;
-        return false;
-      }
-      out.parts.push_back(std::move(p));
+      if (!template_part(i, close, out)) return false;
       i = close + 1;
       literal_start = i;
     } else {
@@ -331,6 +292,63 @@ bool AstBuilder::text(antlr4::Token* token, ast::Template& out) {
     }
   }
   flush(end);
+  return true;
+}
+
+// Reports a template error (E0007) from byte `from` to `to`; always false.
+bool AstBuilder::template_error(uint32_t from, uint32_t to, std::string message, std::string label,
+                                std::string help) {
+  failed_ = true;
+  auto& d =
+      sink_.error("E0007", in_.sources().span(in_.file(), from, to), std::move(message), std::move(label));
+  if (!help.empty()) d.help(std::move(help));
+  return false;
+}
+
+// The part `{expr}` or `{expr:.N}` of a template between bytes `i` (the `{`) and `close` (its
+// `}`), added to `out`; false after a diagnostic.
+bool AstBuilder::template_part(uint32_t i, uint32_t close, ast::Template& out) {
+  const ast::SourceMap& sources = in_.sources();
+  const std::string& src = sources.file(in_.file()).text;
+  // The format's `:` is outside brackets (`{any(i in 1..2: ...):.0}` has one inside).
+  uint32_t colon = i + 1;
+  for (int depth = 0; colon < close && (src[colon] != ':' || depth > 0); ++colon)
+    depth += src[colon] == '(' ? 1 : src[colon] == ')' ? -1 : 0;
+  std::string_view inner(src.data() + i + 1, colon - i - 1);
+  std::string_view all(src.data() + i + 1, close - i - 1);
+  if (size_t k = all.find_first_not_of(" \t");
+      k != std::string_view::npos && (all[k] == '%' || all[k] == '#')) {
+    failed_ = true;
+    sink_
+        .error("E0008", sources.span(in_.file(), i, close + 1),
+               fmt::format("Jinja's `{{{}` ... `{}}}` is not part of the rule language", all[k], all[k]),
+               "a Klipper macro statement")
+        .help(
+            "decide in the executor: `if layer.index == 0 { gcode \"...\" } else { gcode \"...\" }`; a "
+            "template only prints values: `{layer.z:.2}`");
+    return false;
+  }
+  if (inner.find_first_not_of(" \t\r\n") == std::string_view::npos)
+    return template_error(i, close + 1, "empty `{}` in template", "nothing to print here",
+                          "put a value inside, like `{layer.index}`, or write `{{}}` for literal braces");
+  ast::TemplatePart p;
+  p.span = sources.span(in_.file(), i, close + 1);
+  if (colon < close) {
+    std::string_view fmt(src.data() + colon + 1, close - colon - 1);
+    bool good = fmt.size() >= 2 && fmt.size() <= 3 && fmt[0] == '.' &&
+                fmt.find_first_not_of("0123456789", 1) == std::string_view::npos;
+    int decimals = good ? std::stoi(std::string(fmt.substr(1))) : -1;
+    if (!good || decimals > 12)
+      return template_error(colon, close, fmt::format("unknown format `:{}` in template", fmt),
+                            "expected `:.N`, N decimals (0 to 12)", "write `{layer.z:.2}` for two decimals");
+    p.decimals = decimals;
+  }
+  p.expr = parse_expression(sources, in_.file(), i + 1, colon, sink_, options_);
+  if (!p.expr) {
+    failed_ = true;
+    return false;
+  }
+  out.parts.push_back(std::move(p));
   return true;
 }
 

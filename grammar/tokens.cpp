@@ -149,15 +149,10 @@ std::unique_ptr<antlr4::CommonToken> synthetic_newline(const antlr4::Token& afte
   return t;
 }
 
-}  // namespace
-
-Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool expression_only) {
-  Tokens out;
-  out.lexer = std::make_unique<RulesLexer>(&input);
-  antlr4::Lexer& lexer = *out.lexer;
-  lexer.removeErrorListeners();  // ERROR_CHAR catches every character no other rule does
-
-  std::vector<std::unique_ptr<antlr4::Token>> raw;
+// Every token of the input, in `raw`: a run of bad characters is one diagnostic (E0002), an
+// unterminated string one more (E0003); a `"""` never closed makes the rest unreadable (fatal).
+void read_tokens(antlr4::Lexer& lexer, Input& input, diag::Sink& sink, const ParseOptions& options,
+                 Tokens& out, std::vector<std::unique_ptr<antlr4::Token>>& raw) {
   for (;;) {
     std::unique_ptr<antlr4::Token> t = lexer.nextToken();
     size_t type = t->getType();
@@ -191,7 +186,7 @@ Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool exp
                  "this `\"\"\"` is never closed")
           .help("end the text with `\"\"\"`");
       out.fatal = true;  // the rest of the file is inside the string
-      return out;
+      return;
     }
     if (type == L::UNTERMINATED_STRING) {
       if (++out.errors <= options.max_errors) {
@@ -203,7 +198,12 @@ Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool exp
     raw.push_back(std::move(t));
     if (type == antlr4::Token::EOF) break;
   }
+}
 
+// The tokens the parser sees, in `out.list`: newlines only where a statement ends (a `}` not
+// followed by one gets one), and the nesting of brackets and prefix operators checked (E0005).
+void layout_tokens(std::vector<std::unique_ptr<antlr4::Token>>& raw, Input& input, diag::Sink& sink,
+                   const ParseOptions& options, bool expression_only, Tokens& out) {
   // The newline filter and the nesting check, in one pass with one token of lookahead.
   struct Open {
     size_t type;
@@ -261,7 +261,7 @@ Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool exp
                  "the limit is reached here")
           .help("split the expression into several rules or `let` steps");
       out.fatal = true;
-      return out;
+      return;
     }
 
     out.list.push_back(std::move(t));
@@ -273,6 +273,19 @@ Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool exp
     }
   }
   for (const auto& o : open) out.unclosed.push_back(o.span);
+}
+
+}  // namespace
+
+Tokens lex(Input& input, diag::Sink& sink, const ParseOptions& options, bool expression_only) {
+  Tokens out;
+  out.lexer = std::make_unique<RulesLexer>(&input);
+  antlr4::Lexer& lexer = *out.lexer;
+  lexer.removeErrorListeners();  // ERROR_CHAR catches every character no other rule does
+  std::vector<std::unique_ptr<antlr4::Token>> raw;
+  read_tokens(lexer, input, sink, options, out, raw);
+  if (out.fatal) return out;
+  layout_tokens(raw, input, sink, options, expression_only, out);
   return out;
 }
 

@@ -199,6 +199,63 @@ std::optional<double> scan_number(std::string_view s, size_t* pos) {
   return v;
 }
 
+namespace {
+
+// One segment of command `up` (upper case; `rel`: its coordinates are relative) with arguments
+// `a`; `prev` is the previous segment's command and `last_ctrl` its last control point (for the
+// reflections of S and T), updated for curves.
+void draw_segment(PathBuilder& pb, char up, bool rel, const double (&a)[7], char prev, Vec2& last_ctrl) {
+  Vec2 cur = pb.current();
+  Vec2 o = rel ? cur : Vec2{};
+  switch (up) {
+    case 'M':
+      pb.move_to(o + Vec2{a[0], a[1]});
+      break;
+    case 'L':
+      pb.line_to(o + Vec2{a[0], a[1]});
+      break;
+    case 'H':
+      pb.line_to({(rel ? cur.x : 0) + a[0], cur.y});
+      break;
+    case 'V':
+      pb.line_to({cur.x, (rel ? cur.y : 0) + a[0]});
+      break;
+    case 'C':
+    case 'S': {
+      Vec2 c1, c2, p;
+      if (up == 'C') {
+        c1 = o + Vec2{a[0], a[1]}, c2 = o + Vec2{a[2], a[3]}, p = o + Vec2{a[4], a[5]};
+      } else {
+        c1 = (prev == 'C' || prev == 'S') ? 2.0 * cur - last_ctrl : cur;
+        c2 = o + Vec2{a[0], a[1]}, p = o + Vec2{a[2], a[3]};
+      }
+      pb.cubic_to(c1, c2, p);
+      last_ctrl = c2;
+      break;
+    }
+    case 'Q':
+    case 'T': {
+      Vec2 ctrl, p;
+      if (up == 'Q') {
+        ctrl = o + Vec2{a[0], a[1]}, p = o + Vec2{a[2], a[3]};
+      } else {
+        ctrl = (prev == 'Q' || prev == 'T') ? 2.0 * cur - last_ctrl : cur;
+        p = o + Vec2{a[0], a[1]};
+      }
+      pb.quadratic_to(ctrl, p);
+      last_ctrl = ctrl;
+      break;
+    }
+    case 'A':
+      pb.arc_to(a[0], a[1], a[2], a[3] != 0, a[4] != 0, o + Vec2{a[5], a[6]});
+      break;
+    default:
+      break;
+  }
+}
+
+}  // namespace
+
 Result<std::vector<Subpath>> parse_path_data(std::string_view d, double tolerance, size_t* error_offset,
                                              size_t max_points) {
   Scanner sc(d);
@@ -263,53 +320,7 @@ Result<std::vector<Subpath>> parse_path_data(std::string_view d, double toleranc
       }
       a[i] = *v;
     }
-    Vec2 cur = pb.current();
-    Vec2 o = rel ? cur : Vec2{};
-    switch (up) {
-      case 'M':
-        pb.move_to(o + Vec2{a[0], a[1]});
-        break;
-      case 'L':
-        pb.line_to(o + Vec2{a[0], a[1]});
-        break;
-      case 'H':
-        pb.line_to({(rel ? cur.x : 0) + a[0], cur.y});
-        break;
-      case 'V':
-        pb.line_to({cur.x, (rel ? cur.y : 0) + a[0]});
-        break;
-      case 'C':
-      case 'S': {
-        Vec2 c1, c2, p;
-        if (up == 'C') {
-          c1 = o + Vec2{a[0], a[1]}, c2 = o + Vec2{a[2], a[3]}, p = o + Vec2{a[4], a[5]};
-        } else {
-          c1 = (prev == 'C' || prev == 'S') ? 2.0 * cur - last_ctrl : cur;
-          c2 = o + Vec2{a[0], a[1]}, p = o + Vec2{a[2], a[3]};
-        }
-        pb.cubic_to(c1, c2, p);
-        last_ctrl = c2;
-        break;
-      }
-      case 'Q':
-      case 'T': {
-        Vec2 ctrl, p;
-        if (up == 'Q') {
-          ctrl = o + Vec2{a[0], a[1]}, p = o + Vec2{a[2], a[3]};
-        } else {
-          ctrl = (prev == 'Q' || prev == 'T') ? 2.0 * cur - last_ctrl : cur;
-          p = o + Vec2{a[0], a[1]};
-        }
-        pb.quadratic_to(ctrl, p);
-        last_ctrl = ctrl;
-        break;
-      }
-      case 'A':
-        pb.arc_to(a[0], a[1], a[2], a[3] != 0, a[4] != 0, o + Vec2{a[5], a[6]});
-        break;
-      default:
-        break;
-    }
+    draw_segment(pb, up, rel, a, prev, last_ctrl);
     prev = up;
     if (pb.points() > max_points)
       return fail(cmd_pos, "the path flattens to more than " + std::to_string(max_points) +

@@ -25,9 +25,9 @@ struct LayerOutputs {
   const exports::Sheet* sheet = nullptr;  // the SVG's layout
   exports::LayersJson* json = nullptr;
   std::span<const geo::Layer> resolved;  // the layers as resolved: the exports draw their islands
-  bool exact_cells = false;
+  bool exact_cells = false;  // the exports also show the seed's exact cells (analysis)
   preview::PreviewEncoder* preview = nullptr;  // --export-preview (needs PrintSetup::provenance for the chains)
-  const vm::RuleSet* rules = nullptr;          // names the rules in the preview's provenance  // the exports also show the seed's exact cells (analysis)
+  const vm::RuleSet* rules = nullptr;          // names the rules in the preview's provenance
   int threads = 0;           // 0: TBB's default
   // Sequential printing: > 0 for every object but the first, the height (mm) the head rises to
   // before crossing to this object's first layer (GcodeWriter::object_change).

@@ -200,10 +200,11 @@ void clean(Rings& loops) {
   loops.resize(kept);
 }
 
-LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t* tris, size_t n_tris,
-                     Layer& layer, double gap_tol_mm, Scratch& s) {
-  LayerOut out;
-  const double z = layer.z_slice();
+// The segments where triangles `tris` cross the plane at height z, in `s.segs` (each triangle's in
+// `s.seg_of_tri`); those not found through a shared edge are also indexed by their start in
+// `s.by_key` (unsorted).
+void cut_segments(const Mesh& mesh, const MeshTopology& topo, const uint32_t* tris, size_t n_tris, double z,
+                  Scratch& s) {
   s.segs.clear();
   s.by_key.clear();
   for (size_t i = 0; i < n_tris; ++i) {
@@ -224,6 +225,12 @@ LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t*
     if (!by_edge) s.by_key.emplace_back(seg.from, static_cast<uint32_t>(s.segs.size()));
     s.segs.push_back(seg);
   }
+}
+
+LayerOut slice_layer(const Mesh& mesh, const MeshTopology& topo, const uint32_t* tris, size_t n_tris,
+                     Layer& layer, double gap_tol_mm, Scratch& s) {
+  LayerOut out;
+  cut_segments(mesh, topo, tris, n_tris, layer.z_slice(), s);
   std::sort(s.by_key.begin(), s.by_key.end());
   out.segments = s.segs.size();
   s.used.assign(s.segs.size(), 0);

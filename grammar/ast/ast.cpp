@@ -65,6 +65,35 @@ std::string type_name(const Type& t) {
   return "?";
 }
 
+// A resolved name, member or layer access: what it refers to.
+std::string ref_str(const Expr& e) {
+  switch (e.ref) {
+    case RefKind::Field:
+      return std::string(schema::field(e.field).name);
+    case RefKind::OtherLayer:
+      return fmt::format("{}.{}",
+                         e.other == OtherLayer::Below   ? "below"
+                         : e.other == OtherLayer::Above ? "above"
+                                                        : "layers[...]",
+                         schema::field(e.field).name);
+    case RefKind::Property:
+      return fmt::format("prop {}", schema::property(e.prop).name);
+    case RefKind::Inherited:
+      return fmt::format("inherited {}", schema::property(e.prop).name);
+    case RefKind::Local:
+      return fmt::format("local#{}", e.local);
+    case RefKind::ElementField:
+      return fmt::format("local#{}.{}", e.local, e.member);
+    case RefKind::EnumValue:
+      return fmt::format("enum {}", e.text);
+    case RefKind::Bound:
+      return fmt::format("bound#{} {}", e.local, e.text);
+    case RefKind::None:
+      return e.member.empty() ? e.text : e.text + "." + e.member;
+  }
+  return {};
+}
+
 std::string expr_str(const Expr& e) {
   std::string head;
   switch (e.kind) {
@@ -80,39 +109,7 @@ std::string expr_str(const Expr& e) {
     case ExprKind::Name:
     case ExprKind::Member:
     case ExprKind::LayerAccess:
-      switch (e.ref) {
-        case RefKind::Field:
-          head = std::string(schema::field(e.field).name);
-          break;
-        case RefKind::OtherLayer:
-          head = fmt::format("{}.{}",
-                             e.other == OtherLayer::Below   ? "below"
-                             : e.other == OtherLayer::Above ? "above"
-                                                            : "layers[...]",
-                             schema::field(e.field).name);
-          break;
-        case RefKind::Property:
-          head = fmt::format("prop {}", schema::property(e.prop).name);
-          break;
-        case RefKind::Inherited:
-          head = fmt::format("inherited {}", schema::property(e.prop).name);
-          break;
-        case RefKind::Local:
-          head = fmt::format("local#{}", e.local);
-          break;
-        case RefKind::ElementField:
-          head = fmt::format("local#{}.{}", e.local, e.member);
-          break;
-        case RefKind::EnumValue:
-          head = fmt::format("enum {}", e.text);
-          break;
-        case RefKind::Bound:
-          head = fmt::format("bound#{} {}", e.local, e.text);
-          break;
-        case RefKind::None:
-          head = e.member.empty() ? e.text : e.text + "." + e.member;
-          break;
-      }
+      head = ref_str(e);
       break;
     case ExprKind::Call:
       head = func_name(e.func);

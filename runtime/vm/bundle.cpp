@@ -255,6 +255,102 @@ std::string write_bundle(const Program& p, bool with_debug) {
   return std::move(s);
 }
 
+namespace {
+
+// The rules section: the conjuncts, then the rules.
+void read_rules(Reader& r, Program& p) {
+  uint32_t k = r.count(8);
+  p.conjuncts.resize(k);
+  for (uint32_t i = 0; i < k && r.ok(); ++i) {
+    p.conjuncts[i].chunk = r.u32();
+    uint8_t level = r.u8();
+    if (level >= schema::kLevelCount) r.fail("unknown level");
+    p.conjuncts[i].level = static_cast<schema::Level>(level);
+    if (r.u8() != 0 || r.u8() != 0 || r.u8() != 0) r.fail("non-zero padding");
+  }
+  uint32_t m = r.count(8);
+  p.rules.resize(m);
+  for (uint32_t i = 0; i < m && r.ok(); ++i) {
+    p.rules[i].first = r.u32();
+    p.rules[i].count = r.u32();
+  }
+}
+
+// The debug section.
+void read_debug(Reader& r, Debug& d) {
+  d.files = r.strings();
+  uint32_t k = r.count(12);
+  d.locs.resize(k);
+  for (uint32_t i = 0; i < k && r.ok(); ++i) d.locs[i] = {r.u32(), r.u32(), r.u32()};
+  d.instr_loc = r.u32s();
+  d.rule_names = r.strings();
+  d.rule_loc = r.u32s();
+  d.conj_text = r.strings();
+  d.conj_loc = r.u32s();
+}
+
+// The program from its sections (`sec[id]`; the debug section only when `debug`).
+Result<Program> read_sections(const std::vector<std::string_view>& sec, bool debug, const std::string& name) {
+  auto bad = [&](const std::string& why) {
+    return Error{name, fmt::format("{}; rebuild it with `rulec build`", why)};
+  };
+  Program p;
+  auto parse = [&](uint32_t id, auto&& body) -> Status {
+    Reader r(sec[id], "");
+    body(r);
+    if (r.ok() && !r.done()) r.fail("trailing bytes");
+    if (!r.ok()) return bad(fmt::format("section {}: {}", id, r.error()));
+    return ok_status();
+  };
+  Status s = parse(kStrings, [&](Reader& r) { p.strings = r.strings(); });
+  if (s) s = parse(kConsts, [&](Reader& r) {
+    uint32_t k = r.count(8);
+    p.consts.resize(k);
+    for (uint32_t i = 0; i < k && r.ok(); ++i) p.consts[i] = r.f64();
+  });
+  if (s) s = parse(kCode, [&](Reader& r) {
+    uint32_t k = r.count(8);
+    p.code.resize(k);
+    for (uint32_t i = 0; i < k && r.ok(); ++i) p.code[i] = Instr::unpack(r.u64());
+  });
+  if (s) s = parse(kChunks, [&](Reader& r) {
+    uint32_t k = r.count(12);
+    p.chunks.resize(k);
+    for (uint32_t i = 0; i < k && r.ok(); ++i) {
+      auto& c = p.chunks[i];
+      c.start = r.u32();
+      c.size = r.u32();
+      c.regs = r.u16();
+      uint8_t kind = r.u8();
+      if (kind > static_cast<uint8_t>(ChunkKind::Replace)) r.fail("unknown chunk kind");
+      c.kind = static_cast<ChunkKind>(kind);
+      if (r.u8() != 0) r.fail("non-zero padding");
+    }
+  });
+  if (s) s = parse(kRules, [&](Reader& r) { read_rules(r, p); });
+  if (s) s = parse(kSlots, [&](Reader& r) {
+    for (auto& c : p.props) c = read_candidates(r);
+    for (auto& level : p.hooks)
+      for (auto& c : level) c = read_candidates(r);
+    for (auto& c : p.replace) c = read_candidates(r);
+  });
+  if (s) s = parse(kOrder, [&](Reader& r) {
+    uint32_t k = r.count(2);
+    for (uint32_t i = 0; i < k && r.ok(); ++i) {
+      uint16_t id = r.u16();
+      if (id >= schema::kPropCount) r.fail("unknown property");
+      p.property_order.push_back(static_cast<schema::PropId>(id));
+    }
+  });
+  if (s && debug) s = parse(kDebug, [&](Reader& r) { read_debug(r, p.debug); });
+  if (!s) return s.error();
+  if (debug && p.debug.empty()) return bad("the debug section is empty");
+  if (Status v = verify(p); !v) return Error{name, fmt::format("this bundle is invalid ({}); rebuild it with `rulec build`", v.error().message)};
+  return p;
+}
+
+}  // namespace
+
 Result<Program> read_bundle(std::string_view bytes, const std::string& name) {
   auto bad = [&](const std::string& why) {
     return Error{name, fmt::format("{}; rebuild it with `rulec build`", why)};
@@ -291,86 +387,7 @@ Result<Program> read_bundle(std::string_view bytes, const std::string& name) {
     sec[id] = bytes.substr(off, len);
   }
 
-  Program p;
-  auto parse = [&](uint32_t id, auto&& body) -> Status {
-    Reader r(sec[id], "");
-    body(r);
-    if (r.ok() && !r.done()) r.fail("trailing bytes");
-    if (!r.ok()) return bad(fmt::format("section {}: {}", id, r.error()));
-    return ok_status();
-  };
-  Status s = parse(kStrings, [&](Reader& r) { p.strings = r.strings(); });
-  if (s) s = parse(kConsts, [&](Reader& r) {
-    uint32_t k = r.count(8);
-    p.consts.resize(k);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) p.consts[i] = r.f64();
-  });
-  if (s) s = parse(kCode, [&](Reader& r) {
-    uint32_t k = r.count(8);
-    p.code.resize(k);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) p.code[i] = Instr::unpack(r.u64());
-  });
-  if (s) s = parse(kChunks, [&](Reader& r) {
-    uint32_t k = r.count(12);
-    p.chunks.resize(k);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) {
-      auto& c = p.chunks[i];
-      c.start = r.u32();
-      c.size = r.u32();
-      c.regs = r.u16();
-      uint8_t kind = r.u8();
-      if (kind > static_cast<uint8_t>(ChunkKind::Replace)) r.fail("unknown chunk kind");
-      c.kind = static_cast<ChunkKind>(kind);
-      if (r.u8() != 0) r.fail("non-zero padding");
-    }
-  });
-  if (s) s = parse(kRules, [&](Reader& r) {
-    uint32_t k = r.count(8);
-    p.conjuncts.resize(k);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) {
-      p.conjuncts[i].chunk = r.u32();
-      uint8_t level = r.u8();
-      if (level >= schema::kLevelCount) r.fail("unknown level");
-      p.conjuncts[i].level = static_cast<schema::Level>(level);
-      if (r.u8() != 0 || r.u8() != 0 || r.u8() != 0) r.fail("non-zero padding");
-    }
-    uint32_t m = r.count(8);
-    p.rules.resize(m);
-    for (uint32_t i = 0; i < m && r.ok(); ++i) {
-      p.rules[i].first = r.u32();
-      p.rules[i].count = r.u32();
-    }
-  });
-  if (s) s = parse(kSlots, [&](Reader& r) {
-    for (auto& c : p.props) c = read_candidates(r);
-    for (auto& level : p.hooks)
-      for (auto& c : level) c = read_candidates(r);
-    for (auto& c : p.replace) c = read_candidates(r);
-  });
-  if (s) s = parse(kOrder, [&](Reader& r) {
-    uint32_t k = r.count(2);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) {
-      uint16_t id = r.u16();
-      if (id >= schema::kPropCount) r.fail("unknown property");
-      p.property_order.push_back(static_cast<schema::PropId>(id));
-    }
-  });
-  if (s && debug) s = parse(kDebug, [&](Reader& r) {
-    Debug& d = p.debug;
-    d.files = r.strings();
-    uint32_t k = r.count(12);
-    d.locs.resize(k);
-    for (uint32_t i = 0; i < k && r.ok(); ++i) d.locs[i] = {r.u32(), r.u32(), r.u32()};
-    d.instr_loc = r.u32s();
-    d.rule_names = r.strings();
-    d.rule_loc = r.u32s();
-    d.conj_text = r.strings();
-    d.conj_loc = r.u32s();
-  });
-  if (!s) return s.error();
-  if (debug && p.debug.empty()) return bad("the debug section is empty");
-  if (Status v = verify(p); !v) return Error{name, fmt::format("this bundle is invalid ({}); rebuild it with `rulec build`", v.error().message)};
-  return p;
+  return read_sections(sec, debug, name);
 }
 
 }  // namespace tranche::vm

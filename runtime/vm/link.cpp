@@ -73,6 +73,38 @@ Result<std::vector<schema::PropId>> property_order(const Program& p) {
   return order;
 }
 
+namespace {
+
+// The debug information of program `p` appended to `d`: its own, or placeholders that name it.
+void append_debug(Debug& d, const Program& p, const std::string& name) {
+  const auto files = static_cast<uint32_t>(d.files.size());
+  const auto locs = static_cast<uint32_t>(d.locs.size());
+  if (!p.debug.empty()) {
+    d.files.insert(d.files.end(), p.debug.files.begin(), p.debug.files.end());
+    for (Loc l : p.debug.locs) {
+      l.file += files;
+      d.locs.push_back(l);
+    }
+    for (uint32_t l : p.debug.instr_loc) d.instr_loc.push_back(l + locs);
+    d.rule_names.insert(d.rule_names.end(), p.debug.rule_names.begin(), p.debug.rule_names.end());
+    for (uint32_t l : p.debug.rule_loc) d.rule_loc.push_back(l + locs);
+    d.conj_text.insert(d.conj_text.end(), p.debug.conj_text.begin(), p.debug.conj_text.end());
+    for (uint32_t l : p.debug.conj_loc) d.conj_loc.push_back(l + locs);
+  } else {
+    d.files.push_back(name);
+    d.locs.push_back({files, 0, 0});
+    d.instr_loc.insert(d.instr_loc.end(), p.code.size(), locs);
+    for (size_t r = 0; r < p.rules.size(); ++r) {
+      d.rule_names.push_back(fmt::format("{} of {}", r, name));
+      d.rule_loc.push_back(locs);
+    }
+    d.conj_text.insert(d.conj_text.end(), p.conjuncts.size(), std::string("?"));
+    d.conj_loc.insert(d.conj_loc.end(), p.conjuncts.size(), locs);
+  }
+}
+
+}  // namespace
+
 Result<Program> link(std::vector<Program> programs, const std::vector<std::string>& names) {
   if (programs.size() == 1) return std::move(programs[0]);
   Program out;
@@ -123,32 +155,7 @@ Result<Program> link(std::vector<Program> programs, const std::vector<std::strin
       for (size_t w = 0; w < 2; ++w) merge(out.hooks[l][w], p.hooks[l][w]);
     for (size_t l = 0; l < out.replace.size(); ++l) merge(out.replace[l], p.replace[l]);
 
-    // Debug: real entries, or placeholders that name the program.
-    Debug& d = out.debug;
-    const auto files = static_cast<uint32_t>(d.files.size());
-    const auto locs = static_cast<uint32_t>(d.locs.size());
-    if (!p.debug.empty()) {
-      d.files.insert(d.files.end(), p.debug.files.begin(), p.debug.files.end());
-      for (Loc l : p.debug.locs) {
-        l.file += files;
-        d.locs.push_back(l);
-      }
-      for (uint32_t l : p.debug.instr_loc) d.instr_loc.push_back(l + locs);
-      d.rule_names.insert(d.rule_names.end(), p.debug.rule_names.begin(), p.debug.rule_names.end());
-      for (uint32_t l : p.debug.rule_loc) d.rule_loc.push_back(l + locs);
-      d.conj_text.insert(d.conj_text.end(), p.debug.conj_text.begin(), p.debug.conj_text.end());
-      for (uint32_t l : p.debug.conj_loc) d.conj_loc.push_back(l + locs);
-    } else {
-      d.files.push_back(name);
-      d.locs.push_back({files, 0, 0});
-      d.instr_loc.insert(d.instr_loc.end(), p.code.size(), locs);
-      for (size_t r = 0; r < p.rules.size(); ++r) {
-        d.rule_names.push_back(fmt::format("{} of {}", r, name));
-        d.rule_loc.push_back(locs);
-      }
-      d.conj_text.insert(d.conj_text.end(), p.conjuncts.size(), std::string("?"));
-      d.conj_loc.insert(d.conj_loc.end(), p.conjuncts.size(), locs);
-    }
+    append_debug(out.debug, p, name);
   }
   auto order = property_order(out);
   if (!order) return order.error();

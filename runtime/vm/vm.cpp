@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "runtime/vm/machine.h"
 #include "runtime/vm/verify.h"
 
 namespace tranche::vm {
@@ -16,39 +16,12 @@ namespace tranche::vm {
 using schema::Level;
 using schema::Stage;
 
-namespace {
-
-// Registers of every frame of the calling thread: frames nest (a value that reads its own
-// property's earlier value runs another candidate's chunk), so they are carved from one block
-// that never moves.
-constexpr size_t kStackRegs = 1u << 17;
-
-struct ThreadState {
-  std::unique_ptr<double[]> regs{new double[kStackRegs]()};
-  size_t top = 0;
-  // Per property: the candidates live for the current outer element (see vm.h, hoisting).
-  struct Live {
-    uint64_t key = 0;  // Context::generation of the level outside the decision; 0: none
-    uint32_t owner = 0;
-    struct Entry {
-      uint32_t candidate;       // index into the property's candidates
-      uint32_t first, count;    // its inner conjuncts in RuleSet::split_list_
-    };
-    std::vector<Entry> entries;  // in candidate order
-  };
-  std::array<Live, schema::kPropCount> live;
-  std::string text;  // the template being built
-  Counters counters;
-};
-
 ThreadState& state() {
   thread_local ThreadState s;
   return s;
 }
 
-
-enum class Fault : uint8_t { None, DivZero, ModZero, SqrtNeg, NotFinite, TextTooLong, OutputTooLong, Steps,
-                             Depth, Api };
+namespace {
 
 std::string format_number(double v, uint16_t decimals) {
   if (decimals != kDefaultDecimals) {
@@ -66,70 +39,6 @@ std::string format_number(double v, uint16_t decimals) {
 double round_half_away(double v) { return std::round(v); }
 
 }  // namespace
-
-// Runs chunks for one call into the RuleSet (one decision, one hook, one replacement).
-class Machine {
- public:
-  Machine(const RuleSet& rs, const ctx::Context& c, const ctx::PropertyValues* props)
-      : rs_(rs), p_(rs.program_), ctx_(c), props_(props), st_(state()) {}
-
-  ctx::LineSink* out = nullptr;
-  ctx::ReplaceApi* api = nullptr;
-
-  ~Machine() {
-    st_.counters.conjuncts_run += run_;
-    st_.counters.live_rebuilds += rebuilds_;
-  }
-
-  // Runs chunk `ci`; false on a fault (see error()).
-  bool exec(uint32_t ci, double& result);
-  // Whether conjunct k holds (for rule r, named in errors).
-  bool conj(uint32_t k, uint32_t r, bool& ok);
-  // Whether every conjunct of rule r holds.
-  bool test(uint32_t r, bool& result);
-  // The candidate of property q that decides it, among those of rules before `below` (all when
-  // UINT32_MAX): its index, or -1 when none matches.
-  bool winner(schema::PropId q, uint32_t below, int& index);
-  // The value of property q as the rules before `below` decide it (else its base).
-  bool resolve(schema::PropId q, uint32_t below, double& result);
-  // The value of candidate i of property q.
-  bool value(schema::PropId q, int i, double& result);
-
-  Error error() const;
-  bool faulted() const { return fault_ != Fault::None; }
-  void fail_api(Error e) {
-    fault_ = Fault::Api;
-    api_error_ = std::make_unique<Error>(std::move(e));
-  }
-
- private:
-  bool fault(Fault f, uint32_t ci, uint32_t pc) {
-    fault_ = f;
-    fault_chunk_ = ci;
-    fault_pc_ = pc;
-    return false;
-  }
-  double elem(Coll c, size_t index, uint16_t member) const;
-  size_t count(Coll c) const;
-  bool emit(bool comment, uint32_t ci, uint32_t pc);
-
-  const RuleSet& rs_;
-  const Program& p_;
-  const ctx::Context& ctx_;
-  const ctx::PropertyValues* props_;
-  ThreadState& st_;
-  uint64_t steps_ = 0;
-  size_t emitted_ = 0;
-  int depth_ = 0;
-  Fault fault_ = Fault::None;
-  uint32_t fault_chunk_ = 0, fault_pc_ = 0;
-  std::unique_ptr<Error> api_error_;  // set with Fault::Api
-  uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
-  uint16_t depth_read_ = 0;     // values read as "the rules before" being computed (for traces)
-  uint64_t run_ = 0, rebuilds_ = 0;
-
-  friend class RuleSet;
-};
 
 size_t Machine::count(Coll c) const {
   switch (c) {
@@ -575,194 +484,6 @@ Error Machine::error() const {
   return Error{where.empty() ? std::string("rules") : where, fmt::format("in {}: {}{}", rule, what, help)};
 }
 
-namespace {
-std::atomic<uint32_t> next_uid{1};
-}
-
-Counters& thread_counters() { return state().counters; }
-
-RuleSet::RuleSet(Program p) : program_(std::move(p)), uid_(next_uid.fetch_add(1)) {}
-
-Result<std::shared_ptr<const RuleSet>> RuleSet::create(Program program) {
-  if (Status s = verify(program); !s) return s.error();
-  std::shared_ptr<RuleSet> rs(new RuleSet(std::move(program)));
-  rs->analyse();
-  return std::shared_ptr<const RuleSet>(std::move(rs));
-}
-
-void RuleSet::analyse() {
-  const Program& p = program_;
-  // Per chunk: the innermost level it reads and whether it reads only fields.
-  std::vector<Level> chunk_level(p.chunks.size(), Level::Print);
-  std::vector<uint8_t> pure(p.chunks.size(), 1);
-  for (size_t c = 0; c < p.chunks.size(); ++c) {
-    const Chunk& ch = p.chunks[c];
-    Level lv = Level::Print;
-    for (uint32_t i = 0; i < ch.size; ++i) {
-      const Instr& in = p.code[ch.start + i];
-      const OpInfo& info = op_info(in.code());
-      auto field = [&](uint16_t f) {
-        reads_[f] = true;
-        lv = std::max(lv, schema::fields()[f].level);
-      };
-      if (info.b == Operand::Field) field(in.b);
-      if (info.c == Operand::Field) field(in.c);
-      switch (in.code()) {
-        case Op::Prop:
-        case Op::Inherit:
-          pure[c] = 0;
-          lv = std::max(lv, schema::stage_level(schema::property(static_cast<schema::PropId>(in.b)).stage));
-          break;
-        case Op::Layer:
-        case Op::LayerRel:
-          lv = std::max(lv, Level::Layer);
-          break;
-        case Op::Count:
-        case Op::Elem: {
-          pure[c] = 0;
-          auto coll = static_cast<Coll>(in.code() == Op::Count ? in.b : in.c);
-          lv = std::max(lv, coll == Coll::Islands ? Level::Layer : Level::Path);
-          if (in.code() == Op::Elem && coll != Coll::Points) reads_[in.d] = true;
-          break;
-        }
-        default:
-          break;
-      }
-    }
-    chunk_level[c] = lv;
-  }
-  // Conjuncts of the form `field CMP constant`: [j(n)CMP.fk field, K, ->2; retk 1; retk 0].
-  simple_.assign(p.conjuncts.size(), Simple{});
-  for (size_t k = 0; k < p.conjuncts.size(); ++k) {
-    const Chunk& ch = p.chunks[p.conjuncts[k].chunk];
-    if (ch.size != 3) continue;
-    const Instr* c = &p.code[ch.start];
-    if (c[1].code() != Op::RetK || c[2].code() != Op::RetK || p.consts[c[1].b] != 1 || p.consts[c[2].b] != 0)
-      continue;
-    static constexpr Op kFused[6][2] = {{Op::JnEqFK, Op::JEqFK}, {Op::JnNeFK, Op::JNeFK}, {Op::JnLtFK, Op::JLtFK},
-                                        {Op::JnLeFK, Op::JLeFK}, {Op::JnGtFK, Op::JGtFK}, {Op::JnGeFK, Op::JGeFK}};
-    for (uint8_t cmp = 0; cmp < 6; ++cmp)
-      for (int when = 0; when < 2; ++when)
-        if (c[0].code() == kFused[cmp][when] && c[0].d == 2)
-          // jn: jump to "false" when the comparison fails, so the result is the comparison;
-          // j: jump to "false" when it holds, so the result is its negation.
-          simple_[k] = Simple{true, when == 1, cmp, c[0].b, p.consts[c[0].c]};
-  }
-  is_const_.assign(p.chunks.size(), 0);
-  const_value_.assign(p.chunks.size(), 0);
-  for (size_t c = 0; c < p.chunks.size(); ++c) {
-    const Chunk& ch = p.chunks[c];
-    if (ch.kind == ChunkKind::Value && ch.size == 1 && p.code[ch.start].code() == Op::RetK) {
-      is_const_[c] = 1;
-      const_value_[c] = p.consts[p.code[ch.start].b];
-    }
-  }
-  auto rule_level = [&](uint32_t r) {
-    Level lv = Level::Print;
-    for (uint32_t k = p.rules[r].first; k < p.rules[r].first + p.rules[r].count; ++k)
-      lv = std::max(lv, std::max(p.conjuncts[k].level, chunk_level[p.conjuncts[k].chunk]));
-    return lv;
-  };
-  for (const auto& info : schema::properties()) {
-    Range& r = ranges_[static_cast<size_t>(info.id)];
-    r.plain = info.type == schema::Type::Number && info.unit != schema::Unit::Deg;
-    r.min = info.min;
-    r.max = info.max;
-  }
-  varies_.fill(Level::Print);
-  for (auto q : p.property_order) {
-    const auto& cands = p.props[static_cast<size_t>(q)];
-    auto st = schema::property(q).stage;
-    Level decided = st == Stage::Piece ? Level::Piece : schema::stage_level(st);
-    decided_at_[static_cast<size_t>(q)] = decided;
-    // Each candidate's conjuncts, those read before the decision's level first.
-    for (const auto& c : cands) {
-      Split sp;
-      sp.first = static_cast<uint32_t>(split_list_.size());
-      const Rule& rule = p.rules[c.rule];
-      for (int pass = 0; pass < 2; ++pass)
-        for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) {
-          bool outer = pure[p.conjuncts[k].chunk] && p.conjuncts[k].level < decided &&
-                       chunk_level[p.conjuncts[k].chunk] < decided;
-          if (outer != (pass == 0)) continue;
-          split_list_.push_back(k);
-          (outer ? sp.outer : sp.inner) += 1;
-        }
-      split_[static_cast<size_t>(q)].push_back(sp);
-    }
-    if (cands.empty()) continue;
-    stage_props_[static_cast<size_t>(st)].push_back(q);
-    Level& v = varies_[static_cast<size_t>(st)];
-    for (const auto& c : cands) v = std::max(v, std::max(rule_level(c.rule), chunk_level[c.chunk]));
-  }
-}
-
-Result<double> RuleSet::check_value(schema::PropId q, double v) {
-  const auto& info = schema::property(q);
-  if (!std::isfinite(v)) return Error{"", fmt::format("`{}` was given a value that is not a number", info.name)};
-  switch (info.type) {
-    case schema::Type::Bool:
-      return v != 0 ? 1.0 : 0.0;
-    case schema::Type::Enum:
-      if (v < 0 || v >= static_cast<double>(schema::enum_info(info.enum_type).values.size()) || v != std::floor(v))
-        return Error{"", fmt::format("`{}` was given {}, which is not one of its values", info.name, v)};
-      return v;
-    default:
-      break;
-  }
-  if (info.unit == schema::Unit::Deg) {
-    v = std::fmod(v, 360.0);
-    if (v < 0) v += 360.0;
-    return v;
-  }
-  if (v < info.min || v > info.max) {
-    auto show = [&](double x) {
-      if (info.unit == schema::Unit::Ratio) return fmt::format("{:g}%", x * 100);
-      auto u = schema::unit_name(info.unit);
-      return u.empty() ? fmt::format("{:g}", x) : fmt::format("{:g} {}", x, u);
-    };
-    return Error{"", fmt::format("`{}` was given {}, outside its physical range {} to {}", info.name, show(v),
-                                 show(info.min), show(info.max))};
-  }
-  if (info.type == schema::Type::Int) v = std::round(v);
-  return v;
-}
-
-std::string RuleSet::rule_name(uint32_t r) const {
-  if (r < program_.debug.rule_names.size()) {
-    const std::string& n = program_.debug.rule_names[r];
-    if (n.empty()) return fmt::format("rule {}", r);
-    return n.starts_with('"') || std::isdigit(static_cast<unsigned char>(n[0])) ? "rule " + n : n;
-  }
-  return fmt::format("rule {}", r);
-}
-
-std::string RuleSet::rule_where(uint32_t r) const {
-  const Debug& d = program_.debug;
-  if (r >= d.rule_loc.size()) return {};
-  const Loc& l = d.locs[d.rule_loc[r]];
-  if (l.line == 0) return d.files[l.file];
-  return fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
-}
-
-std::string RuleSet::rule_label(uint32_t r) const {
-  if (r < program_.debug.rule_names.size() && !program_.debug.rule_names[r].empty()) {
-    std::string n = program_.debug.rule_names[r];
-    if (n.size() >= 2 && n.front() == '"' && n.back() == '"') n = n.substr(1, n.size() - 2);
-    return n;
-  }
-  return fmt::format("rule {}", r);
-}
-
-std::pair<std::string, uint32_t> RuleSet::chunk_source(uint32_t chunk) const {
-  const Debug& d = program_.debug;
-  if (chunk >= program_.chunks.size()) return {};
-  const uint32_t instr = program_.chunks[chunk].start;
-  if (instr >= d.instr_loc.size() || d.instr_loc[instr] >= d.locs.size()) return {};
-  const Loc& l = d.locs[d.instr_loc[instr]];
-  return {l.file < d.files.size() ? d.files[l.file] : std::string(), l.line};
-}
-
 Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {
   const auto& list = stage_props_[static_cast<size_t>(stage)];
   if (list.empty()) return ok_status();
@@ -793,105 +514,6 @@ Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& 
     if (trace) trace->step({q, ctx::TraceStep::Source::Rule, cand_rule(q, i), cand_chunk(q, i), *checked, 0});
   }
   return ok_status();
-}
-
-bool RuleSet::has(Level level, ctx::When when) const {
-  return !program_.hooks[static_cast<size_t>(level)][when == ctx::When::Before ? 0 : 1].empty();
-}
-
-bool RuleSet::has(Level level) const { return !program_.replace[static_cast<size_t>(level)].empty(); }
-
-Status RuleSet::run(Level level, ctx::When when, const ctx::Context& c, ctx::LineSink& out) const {
-  const Candidates& cands = program_.hooks[static_cast<size_t>(level)][when == ctx::When::Before ? 0 : 1];
-  if (cands.empty()) return ok_status();
-  Machine m(*this, c, &c.props());
-  m.out = &out;
-  // The last matching executor decides the hook; the `append` ones after it add to it.
-  const Candidate* base = nullptr;
-  std::vector<const Candidate*> appends;
-  for (const auto& cand : cands) {
-    bool ok;
-    if (!m.test(cand.rule, ok)) return m.error();
-    if (!ok) continue;
-    if (cand.append) {
-      appends.push_back(&cand);
-      continue;
-    }
-    base = &cand;
-    break;
-  }
-  state().text.clear();
-  ctx::Trace* trace = c.trace();
-  auto body = [&](const Candidate* cand) -> Status {
-    double unused;
-    m.rule_ = cand->rule;
-    if (!trace) {
-      if (!m.exec(cand->chunk, unused)) return m.error();
-      return ok_status();
-    }
-    // Traced: the executor's lines, captured on their way to `out`.
-    struct Tee final : ctx::LineSink {
-      ctx::LineSink& to;
-      std::string text;
-      explicit Tee(ctx::LineSink& o) : to(o) {}
-      void line(std::string_view l) override {
-        if (!text.empty()) text.push_back('\n');
-        text.append(l);
-        to.line(l);
-      }
-    } tee(out);
-    m.out = &tee;
-    const bool ok = m.exec(cand->chunk, unused);
-    m.out = &out;
-    if (!ok) return m.error();
-    trace->hook(level, when, cand->rule, tee.text);
-    return ok_status();
-  };
-  if (base)
-    if (Status s = body(base); !s) return s;
-  for (auto it = appends.rbegin(); it != appends.rend(); ++it)
-    if (Status s = body(*it); !s) return s;
-  return ok_status();
-}
-
-Result<bool> RuleSet::replace(Level level, const ctx::Context& c, ctx::ReplaceApi& api) const {
-  const Candidates& cands = program_.replace[static_cast<size_t>(level)];
-  if (cands.empty()) return false;
-  Machine m(*this, c, &c.props());
-  m.api = &api;
-  for (const auto& cand : cands) {
-    bool ok;
-    if (!m.test(cand.rule, ok)) return m.error();
-    if (!ok) continue;
-    state().text.clear();
-    double unused;
-    m.rule_ = cand.rule;
-    if (!m.exec(cand.chunk, unused)) return m.error();
-    if (ctx::Trace* t = c.trace()) t->replaced(level, cand.rule);
-    return true;
-  }
-  return false;
-}
-
-Result<double> RuleSet::evaluate(uint32_t chunk, const ctx::Context& c, const ctx::PropertyValues& props) const {
-  if (chunk >= program_.chunks.size()) return Error{"rules", "no such chunk"};
-  auto kind = program_.chunks[chunk].kind;
-  if (kind != ChunkKind::Test && kind != ChunkKind::Value) return Error{"rules", "only tests and values evaluate"};
-  Machine m(*this, c, &props);
-  double v;
-  if (!m.exec(chunk, v)) return m.error();
-  return v;
-}
-
-Result<int> RuleSet::first_match(const Candidates& cands, const ctx::Context& c,
-                                 const ctx::PropertyValues& props) const {
-  Machine m(*this, c, &props);
-  for (size_t i = 0; i < cands.size(); ++i) {
-    bool ok;
-    if (!m.test(cands[i].rule, ok)) return m.error();
-    if (ok) return static_cast<int>(i);
-  }
-  return -1;
 }
 
 }  // namespace tranche::vm

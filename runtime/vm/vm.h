@@ -82,7 +82,16 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
 
  private:
   explicit RuleSet(Program p);
+  // Done once by create() (ruleset.cpp), in this order.
   void analyse();
+  struct ChunkFacts {
+    std::vector<schema::Level> level;  // per chunk: the innermost level it reads
+    std::vector<uint8_t> pure;         // per chunk: 1 when it reads only fields
+  };
+  ChunkFacts analyse_chunks();
+  void analyse_simple();
+  void analyse_constants();
+  void analyse_splits(const ChunkFacts& facts);
   uint32_t cand_rule(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].rule; }
   uint32_t cand_chunk(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].chunk; }
   friend class Machine;

@@ -329,15 +329,63 @@ TEST_CASE("docs: relative links in the user documentation point at existing file
   CHECK(read(root / "README.md").find("docs/cli.md") != std::string::npos);
 }
 
-TEST_CASE("README.md: the layout table names every code folder and every geometry stage") {
+namespace {
+
+// The top-level folders of the checkout that belong to the tree: not hidden (.git, .ci), not
+// ignored by a root-anchored folder pattern of .gitignore (/build*/, /out/), not a build tree.
+std::set<std::string> top_level_folders(const fs::path& root) {
+  std::vector<std::string> ignored;  // patterns such as "build*" or "out"
+  std::istringstream gitignore(read(root / ".gitignore"));
+  for (std::string line; std::getline(gitignore, line);)
+    if (line.size() > 2 && line.front() == '/' && line.back() == '/')
+      ignored.push_back(line.substr(1, line.size() - 2));
+  auto is_ignored = [&](const std::string& name) {
+    for (const auto& p : ignored) {
+      const auto star = p.find('*');
+      if (star == std::string::npos ? name == p : name.starts_with(p.substr(0, star))) return true;
+    }
+    return false;
+  };
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(root)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_directory() || name.starts_with('.') || is_ignored(name)) continue;
+    if (fs::exists(e.path() / "CMakeCache.txt")) continue;
+    out.insert(name);
+  }
+  return out;
+}
+
+// The folders the README's layout table names in its first column (`name/`).
+std::set<std::string> layout_folders(const std::string& layout) {
+  std::set<std::string> out;
+  std::istringstream rows(layout);
+  const std::regex folder(R"(`([A-Za-z0-9_.-]+)/`)");
+  for (std::string row; std::getline(rows, row);) {
+    if (!row.starts_with("| `")) continue;
+    const std::string first = row.substr(0, row.find('|', 1));
+    for (std::sregex_iterator it(first.begin(), first.end(), folder), end; it != end; ++it)
+      out.insert((*it)[1]);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("README.md: the layout table names every top-level folder and every geometry stage") {
   const fs::path root = test::source_dir();
   const std::string readme = read(root / "README.md");
-  const std::string layout = readme.substr(readme.find("## Layout"));
-  for (const char* top : {"base", "runtime", "grammar", "compiler", "geometry", "apps", "stdlib", "examples", "editors",
-                          "tests", "fuzz", "bench", "docs"}) {
-    INFO(top);
-    CHECK(layout.find(std::string("`") + top + "/`") != std::string::npos);
-  }
+  REQUIRE(readme.find("## Layout") != std::string::npos);
+  std::string layout = readme.substr(readme.find("## Layout"));
+  layout = layout.substr(0, layout.find("\n## ", 1));
+  const auto real = top_level_folders(root);
+  const auto named = layout_folders(layout);
+  REQUIRE(real.size() >= 10);
+  for (const auto& f : real)
+    CHECK_MESSAGE(named.count(f) == 1, f << "/ is a top-level folder missing from README.md's layout table");
+  for (const auto& f : named)
+    CHECK_MESSAGE(real.count(f) == 1,
+                  "README.md's layout table names " << f << "/, which is not a top-level folder");
   const std::string geometry_row = layout.substr(layout.find("| `geometry/` |"));
   const std::string row = geometry_row.substr(0, geometry_row.find('\n'));
   for (const auto& e : fs::directory_iterator(root / "geometry")) {
