@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <unordered_map>
 
 #include "runtime/vm/trace_text.h"
 
@@ -65,8 +66,7 @@ class Chains {
         c.source = SourceKind::SchemaDefault;
         break;
       case ctx::TraceStep::Source::BuiltinDefault:
-        c.source = SourceKind::BuiltinDefault;
-        c.rule = "built-in default";
+        c.source = SourceKind::BuiltinDefault;  // the source names it: no rule name, or the page says it twice
         c.text = vm::builtin_rule_text(s.rule);
         break;
       case ctx::TraceStep::Source::Middle:
@@ -132,10 +132,39 @@ class LayerBuilder {
     return n;
   }
 
+  // What a path's record is made of, as bytes: paths (and pieces) decided alike get one record,
+  // built once (the encoder stores each distinct record once, and skips the paths that share it).
+  std::string record_key(const IslandPlan* ip, const PathPlan& p, const plan::TraceLog* piece) const {
+    std::string key;
+    auto put = [&key](const auto& v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    const plan::TraceLog* logs[] = {L.trace.get(), ip ? ip->trace.get() : nullptr, p.trace.get(), piece};
+    for (const plan::TraceLog* log : logs) {
+      put(log ? log->steps.size() : size_t(0));
+      if (log)
+        for (const ctx::TraceStep& t : log->steps) {
+          put(t.prop), put(t.source), put(t.rule), put(t.chunk), put(t.value), put(t.depth);
+        }
+    }
+    put(L.slowed && !p.pieces.empty() ? p.pieces[0].speed : 0.0f);
+    if (text_)
+      for (const auto& h : text_->hooks)
+        if (h.path == &p) {
+          put(h.after), put(h.level), put(h.rule), put(h.text.size());
+          key += h.text;
+        }
+    return key;
+  }
+
   std::shared_ptr<const preview::Provenance> provenance(const IslandPlan* ip, const PathPlan& p,
                                                         const plan::TraceLog* piece,
-                                                        std::shared_ptr<const preview::ReplacerNote> replacer) const {
+                                                        std::shared_ptr<const preview::ReplacerNote> replacer) {
     if (!S.provenance) return nullptr;
+    const bool shareable = !replacer && !p.replaced;  // a replacer's note is the path's own
+    std::string key;
+    if (shareable) {
+      key = record_key(ip, p, piece);
+      if (auto it = records_.find(key); it != records_.end()) return it->second;
+    }
     auto pr = std::make_shared<preview::Provenance>();
     Chains c(rules_);
     c.add(L.trace.get());
@@ -166,6 +195,7 @@ class LayerBuilder {
         }
     if (!replacer && p.replaced && p.trace) replacer = replacer_note(p.trace->replacer, p.ops);
     pr->replacer = std::move(replacer);
+    if (shareable) records_.emplace(std::move(key), pr);
     return pr;
   }
 
@@ -277,6 +307,7 @@ class LayerBuilder {
   const gcode::LayerText* text_;
   const vm::RuleSet* rules_;
   preview::PreviewLayer out_;
+  std::unordered_map<std::string, std::shared_ptr<const preview::Provenance>> records_;  // by record_key
   bool has_pos_ = false;
   geo::Point pos_;
 };

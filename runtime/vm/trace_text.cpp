@@ -53,7 +53,6 @@ StepSource step_source(const ctx::TraceStep& s, const RuleSet* rules) {
     case ctx::TraceStep::Source::Set:
       break;
     case ctx::TraceStep::Source::BuiltinDefault:
-      out.rule = "built-in default";
       out.text = builtin_rule_text(s.rule);
       break;
     case ctx::TraceStep::Source::Rule:

@@ -23,7 +23,7 @@ std::string builtin_rule_text(uint32_t i);
 // Who set one step of a chain.
 struct StepSource {
   ctx::TraceStep::Source source = ctx::TraceStep::Source::Start;
-  std::string rule;  // a rule's name without quotes ("bridges"), or "built-in default"; empty otherwise
+  std::string rule;  // a rule's name without quotes ("bridges"); empty otherwise
   std::string file;  // the rules file as given (a rule's step); empty otherwise
   uint32_t line = 0; // the line of the rule's assignment (or of the rule itself); 0 when unknown
   std::string text;  // a built-in default's rule text; empty otherwise
