@@ -119,7 +119,7 @@ std::string chain_text(PropId q, const std::vector<ctx::TraceStep>& steps, const
       case ctx::TraceStep::Source::Middle: who = "given with --at"; break;
       case ctx::TraceStep::Source::Set: who = "--set"; break;
       case ctx::TraceStep::Source::Rule:
-        who = fmt::format("rule \"{}\" ({}:{}{})", src.rule, src.file, src.line, src.read ? ", read by the next rule" : "");
+        who = fmt::format("rule \"{}\" ({}:{}{})", src.rule, src.file, src.line, src.read ? ", read by the rule after it" : "");
         break;
     }
     out += fmt::format("{}{} {}", out.empty() ? "" : " -> ", vm::value_text(q, s.value), who);

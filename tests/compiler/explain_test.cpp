@@ -96,7 +96,7 @@ rule "small islands" when island.area < 4 mm2 { speed = speed * 50% }
   INFO(out);
   CHECK(has(out, "speed = 7.5 mm/s\n  decided by rule \"small islands\""));
   CHECK(has(out, "  chain: 60 mm/s schema default -> 25 mm/s built-in default (speed = 25 mm/s when path.kind == "
-                 "outer_perimeter) -> 15 mm/s rule \"bridges\" (test.rules:1, read by the next rule) -> 7.5 mm/s "
+                 "outer_perimeter) -> 15 mm/s rule \"bridges\" (test.rules:1, read by the rule after it) -> 7.5 mm/s "
                  "rule \"small islands\" (test.rules:2)\n"));
   CHECK(has(out, "lose this slot: rule \"bridges\" (its value read by a later rule)\n"));
   // Where "bridges" does not match, "small islands" halves the built-in default.
