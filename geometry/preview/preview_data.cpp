@@ -257,6 +257,14 @@ Result<std::string> PreviewEncoder::Impl::json() {
     const auto& info = schema::property(static_cast<schema::PropId>(i));
     j += fmt::format("{}[\"{}\",", i ? "," : "", info.name);
     append_json_string(j, schema::unit_name(info.unit));
+    // The names of an enum's or a bool's values, for the panel ("aligned", not 0).
+    if (info.type == schema::Type::Bool) j += ",[\"false\",\"true\"]";
+    if (info.type == schema::Type::Enum) {
+      j += ",[";
+      const auto values = schema::enum_info(info.enum_type).values;
+      for (size_t v = 0; v < values.size(); ++v) j += fmt::format("{}\"{}\"", v ? "," : "", values[v]);
+      j += "]";
+    }
     j += "]";
   }
   j += "],\"levels\":[";

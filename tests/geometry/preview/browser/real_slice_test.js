@@ -69,6 +69,7 @@ async function main() {
     check(/outer.perimeter|External perimeter/i.test(text), 'the click picks the outer wall', text.slice(0, 200));
     check(text.includes("'slow walls'") && text.includes(rulesFile + ':2'), "the panel names 'slow walls' at " + rulesFile + ':2', text.slice(0, 600));
     check(text.includes('M900 K0.045'), "the panel shows the executor's G-code", text.slice(0, 600));
+    check(/seam\naligned — schema default/.test(text) && /outer_first\nfalse — /.test(text), 'enum and bool values are shown by name', text);
     check(errors.length === 0, 'no console error', errors.join(' | '));
     check(requests.length === 0, 'no network request', requests.join(' '));
   } finally {
