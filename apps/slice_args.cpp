@@ -30,6 +30,8 @@ constexpr Spec kOptions[] = {
     {"--export-layers", "FILE", "a file name", "write every layer as JSON: its islands and the paths printed on them"},
     {"--export-preview", "FILE", "a file name",
      "write the toolpaths as one HTML page: layers, colours by kind, speed,\nflow, width, fan or deciding rule, and why each path is as it is"},
+    {"--explain", "SPEC", "which paths, e.g. \"layer=12 island=0 path=outer_perimeter\"",
+     "explain the paths SPEC selects (layer=N, and island=N, path=KIND or N,\ncell=N, perimeter=N): each slot's value chain with the deciding rules'\nfile:line, the executors, the replacer; alone, nothing else is written"},
     {"--thumbnails", "SIZES", "sizes like 16x16/QOI,220x124/PNG",
      "pictures of the print in the G-code for the printer's screen, e.g.\n16x16/QOI,220x124/PNG (overrides the thumbnails property; none: none)"},
     {"--exact-cells", nullptr, nullptr,
@@ -150,6 +152,7 @@ Status slice_values(const Values& v, pipeline::SliceOptions& o) {
   if (v.given("--export-svg")) o.export_svg = v.last("--export-svg");
   if (v.given("--export-layers")) o.export_layers = v.last("--export-layers");
   if (v.given("--export-preview")) o.export_preview = v.last("--export-preview");
+  if (v.given("--explain")) o.explain = v.last("--explain");
   if (v.given("--thumbnails")) o.thumbnails = v.last("--thumbnails");
   if (v.given("--overlap")) {
     const std::string& m = v.last("--overlap");
@@ -202,7 +205,8 @@ Status plate_values(const Values& v, plate::PlateOptions& p) {
 std::string slice_usage() {
   return "usage: tranche slice MODEL... [options]\n\n"
          "Slices MODEL (.stl, binary or ASCII; .3mf; .obj; or one .svg drawing) into G-code and/or layer\n"
-         "exports. Several models make one plate: objects without a place are arranged on the bed.\n\n"
+         "exports, or explains why the paths of a layer are printed as they are (--explain). Several models\n"
+         "make one plate: objects without a place are arranged on the bed.\n\n"
          "options:\n" +
          option_lines(kOptions) + "\nplate:\n" + option_lines(kPlateOptions);
 }

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", result.error().to_string().c_str());
     return 1;
   }
+  std::fputs(result->explanation.c_str(), stdout);
   for (const auto& f : result->written) std::printf("wrote %s\n", f.c_str());
   return 0;
 }

@@ -3,8 +3,9 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <unordered_map>
 
-#include "runtime/context/defaults.h"
+#include "runtime/vm/trace_text.h"
 
 namespace tranche::pipeline {
 namespace {
@@ -20,33 +21,6 @@ using schema::PropId;
 bool always_shown(PropId p) {
   return p == PropId::Speed || p == PropId::Flow || p == PropId::Width || p == PropId::Fan ||
          p == PropId::FillAngle;
-}
-
-std::string value_text(PropId prop, double v) {
-  const auto& info = schema::property(prop);
-  if (info.type == schema::Type::Enum) return std::string(schema::enum_value_name(info.enum_type, static_cast<int>(v)));
-  if (info.type == schema::Type::Bool) return v != 0 ? "true" : "false";
-  if (info.unit == schema::Unit::Ratio) return fmt::format("{:g}%", v * 100);
-  const auto unit = schema::unit_name(info.unit);
-  return unit.empty() ? fmt::format("{:g}", v) : fmt::format("{:g} {}", v, unit);
-}
-
-// "speed = 25 mm/s when path.kind == outer_perimeter", the built-in rule `i` as a rule would say it.
-std::string builtin_text(uint32_t i) {
-  const auto rules = ctx::builtin_rules();
-  if (i >= rules.size()) return {};
-  const ctx::BuiltinRule& r = rules[i];
-  std::string s = fmt::format("{} = {}", schema::property(r.prop).name, value_text(r.prop, r.result));
-  const auto& f = schema::field(r.field);
-  if (r.test == ctx::BuiltinRule::Test::Equals) {
-    const std::string v = f.type == schema::Type::Enum
-                              ? std::string(schema::enum_value_name(f.enum_type, static_cast<int>(r.operand)))
-                              : fmt::format("{:g}", r.operand);
-    s += fmt::format(" when {} == {}", f.name, v);
-  } else if (r.test == ctx::BuiltinRule::Test::Odd) {
-    s += fmt::format(" when {} is odd", f.name);
-  }
-  return s;
 }
 
 // Turns trace steps into preview chains, naming rules.
@@ -76,15 +50,11 @@ class Chains {
   void rule_source(uint32_t rule, uint32_t chunk, ChainStep& c) const {
     if (!rules_) return;
     c.rule = rules_->rule_label(rule);
-    auto [file, line] = rules_->chunk_source(chunk);
-    if (line == 0) {  // no value code (a hook, a replacer): the rule's own position
-      const std::string where = rules_->rule_where(rule);
-      file = where.substr(0, where.find(':'));
-    }
-    c.file = file;
+    uint32_t line = 0;
+    vm::rule_position(*rules_, rule, chunk, c.file, line);
     c.line = static_cast<int>(line);
-    c.source = file.find("/stdlib/") != std::string::npos || file.rfind("stdlib/", 0) == 0 ? SourceKind::Profile
-                                                                                          : SourceKind::Rule;
+    c.source = c.file.find("/stdlib/") != std::string::npos || c.file.rfind("stdlib/", 0) == 0 ? SourceKind::Profile
+                                                                                              : SourceKind::Rule;
   }
 
  private:
@@ -96,9 +66,8 @@ class Chains {
         c.source = SourceKind::SchemaDefault;
         break;
       case ctx::TraceStep::Source::BuiltinDefault:
-        c.source = SourceKind::BuiltinDefault;
-        c.rule = "built-in default";
-        c.text = builtin_text(s.rule);
+        c.source = SourceKind::BuiltinDefault;  // the source names it: no rule name, or the page says it twice
+        c.text = vm::builtin_rule_text(s.rule);
         break;
       case ctx::TraceStep::Source::Middle:
         c.source = SourceKind::Script;
@@ -155,19 +124,47 @@ class LayerBuilder {
     auto n = std::make_shared<preview::ReplacerNote>();
     if (rule != UINT32_MAX && rules_) {
       n->rule = rules_->rule_label(rule);
-      const std::string where = rules_->rule_where(rule);
-      n->file = where.substr(0, where.find(':'));
-      const size_t a = where.find(':');
-      if (a != std::string::npos) n->line = std::atoi(where.c_str() + a + 1);
+      uint32_t line = 0;
+      vm::rule_position(*rules_, rule, UINT32_MAX, n->file, line);
+      n->line = static_cast<int>(line);
     }
     for (const Op& o : ops) n->emitted_default = n->emitted_default || o.kind == Op::Kind::Default;
     return n;
   }
 
+  // What a path's record is made of, as bytes: paths (and pieces) decided alike get one record,
+  // built once (the encoder stores each distinct record once, and skips the paths that share it).
+  std::string record_key(const IslandPlan* ip, const PathPlan& p, const plan::TraceLog* piece) const {
+    std::string key;
+    auto put = [&key](const auto& v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    const plan::TraceLog* logs[] = {L.trace.get(), ip ? ip->trace.get() : nullptr, p.trace.get(), piece};
+    for (const plan::TraceLog* log : logs) {
+      put(log ? log->steps.size() : size_t(0));
+      if (log)
+        for (const ctx::TraceStep& t : log->steps) {
+          put(t.prop), put(t.source), put(t.rule), put(t.chunk), put(t.value), put(t.depth);
+        }
+    }
+    put(L.slowed && !p.pieces.empty() ? p.pieces[0].speed : 0.0f);
+    if (text_)
+      for (const auto& h : text_->hooks)
+        if (h.path == &p) {
+          put(h.after), put(h.level), put(h.rule), put(h.text.size());
+          key += h.text;
+        }
+    return key;
+  }
+
   std::shared_ptr<const preview::Provenance> provenance(const IslandPlan* ip, const PathPlan& p,
                                                         const plan::TraceLog* piece,
-                                                        std::shared_ptr<const preview::ReplacerNote> replacer) const {
+                                                        std::shared_ptr<const preview::ReplacerNote> replacer) {
     if (!S.provenance) return nullptr;
+    const bool shareable = !replacer && !p.replaced;  // a replacer's note is the path's own
+    std::string key;
+    if (shareable) {
+      key = record_key(ip, p, piece);
+      if (auto it = records_.find(key); it != records_.end()) return it->second;
+    }
     auto pr = std::make_shared<preview::Provenance>();
     Chains c(rules_);
     c.add(L.trace.get());
@@ -193,16 +190,12 @@ class LayerBuilder {
           n.text = h.text;
           ChainStep where;
           Chains(rules_).rule_source(h.rule, UINT32_MAX, where);
-          n.rule = where.rule, n.file = where.file;
-          if (rules_) {
-            const std::string w = rules_->rule_where(h.rule);
-            const size_t a = w.find(':');
-            if (a != std::string::npos) n.line = std::atoi(w.c_str() + a + 1);
-          }
+          n.rule = where.rule, n.file = where.file, n.line = where.line;
           pr->executors.push_back(std::move(n));
         }
     if (!replacer && p.replaced && p.trace) replacer = replacer_note(p.trace->replacer, p.ops);
     pr->replacer = std::move(replacer);
+    if (shareable) records_.emplace(std::move(key), pr);
     return pr;
   }
 
@@ -314,6 +307,7 @@ class LayerBuilder {
   const gcode::LayerText* text_;
   const vm::RuleSet* rules_;
   preview::PreviewLayer out_;
+  std::unordered_map<std::string, std::shared_ptr<const preview::Provenance>> records_;  // by record_key
   bool has_pos_ = false;
   geo::Point pos_;
 };

@@ -11,6 +11,7 @@
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/pipeline/driver.h"
+#include "geometry/pipeline/explain_slice.h"
 #include "geometry/pipeline/load_plate.h"
 #include "geometry/pipeline/progress.h"
 #include "geometry/pipeline/sequential.h"
@@ -26,6 +27,10 @@
 
 namespace tranche::pipeline {
 namespace {
+
+bool writes_files(const SliceOptions& o) {
+  return !o.output_gcode.empty() || !o.export_svg.empty() || !o.export_layers.empty() || !o.export_preview.empty();
+}
 
 // Options that later stages will honour; until then the user hears that they were ignored.
 void warn_unapplied(const SliceOptions& o, bool svg, Report& report) {
@@ -227,7 +232,6 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
 
   auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
   if (!setup) return setup.error();
-  (*setup)->provenance = !options.export_preview.empty();
   (*setup)->allow_off_bed = options.allow_off_bed;
   std::unique_ptr<geo::ScriptAngles> angles;
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
@@ -238,6 +242,19 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
     cascade.set_middle(angles.get());
     progress.finish();
   }
+  if (!options.explain.empty()) {  // the one layer explained records provenance; the run only for a preview
+    auto spec = parse_explain_spec(options.explain);
+    if (!spec) return spec.error();
+    (*setup)->provenance = true;
+    auto text = explain_slice(**setup, cascade, rules, *spec);
+    if (!text) return text.error();
+    summary.explanation = std::move(*text);
+    if (!writes_files(options)) {
+      summary.layers = static_cast<int>(layers.size());
+      return summary;
+    }
+  }
+  (*setup)->provenance = !options.export_preview.empty();
   auto outputs = open_outputs(options, **setup, cascade, layers);
   if (!outputs) return outputs.error();
   LayerOutputs lo;
@@ -289,10 +306,11 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
 }  // namespace
 
 Status check_options(const SliceOptions& options) {
-  if (options.output_gcode.empty() && options.export_svg.empty() && options.export_layers.empty() &&
-      options.export_preview.empty())
-    return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE, --export-layers FILE and/or "
-                     "--export-preview FILE.html"};
+  if (!writes_files(options) && options.explain.empty())
+    return Error{"", "nothing to write: give -o FILE.gcode, --export-svg FILE, --export-layers FILE, "
+                     "--export-preview FILE.html and/or --explain \"layer=N ...\""};
+  if (!options.explain.empty())
+    if (auto spec = parse_explain_spec(options.explain); !spec) return spec.error();
   return ok_status();
 }
 

@@ -30,6 +30,7 @@ struct SliceOptions {
   std::string export_layers;                // --export-layers (JSON)
   bool exact_cells = false;                 // --exact-cells: the exports also show the exact cells (analysis)
   std::string export_preview;               // --export-preview (HTML)
+  std::string explain;                      // --explain "layer=12 island=0 path=outer_perimeter" (explain_slice.h)
   std::string thumbnails;                   // --thumbnails "16x16/QOI, 220x124/PNG": overrides the property
   OverlapMode overlap = OverlapMode::Additive;
   std::string fill_angle_script;            // --fill-angle-script (Python)
@@ -47,9 +48,11 @@ struct SliceSummary {
   int layers = 0;
   size_t triangles = 0;
   std::vector<std::string> written;  // output files, in the order written
+  std::string explanation;           // --explain: the paths explained (explain_slice.h)
 };
 
-// What can be refused before any work (today: a run that writes nothing).
+// What can be refused before any work: a run that writes and explains nothing, an --explain
+// that does not parse.
 Status check_options(const SliceOptions& options);
 
 // Slices `plate` (meshes: STL, 3MF, OBJ, placed by geometry/plate), or when it is null the SVG

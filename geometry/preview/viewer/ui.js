@@ -192,9 +192,10 @@
   }
 
   function chainHtml(meta, prop, steps) {
-    const unit = meta.props[prop][1], S = meta.strings;
-    // Ratios are stored as fractions and read as percentages (50% is 0.5), as in the rules.
-    const show = (v) => (unit === '%' ? fmt(v * 100, 1) + ' %' : unit === 'deg' ? fmt(v, 1) + '°' : fmt(v, unit ? 2 : 3) + (unit ? ' ' + unit : ''));
+    const [, unit, names] = meta.props[prop], S = meta.strings;
+    // Ratios are stored as fractions and read as percentages (50% is 0.5), as in the rules;
+    // enums and bools by their names.
+    const show = (v) => (names && names[v] !== undefined ? names[v] : unit === '%' ? fmt(v * 100, 1) + ' %' : unit === 'deg' ? fmt(v, 1) + '°' : fmt(v, unit ? 2 : 3) + (unit ? ' ' + unit : ''));
     const items = steps.map((s, i) => {
       const [value, , rule, file, line, text] = s;
       const where = S[file] ? ' <span class="where">' + esc(S[file] + (line ? ':' + line : '')) + '</span>' : '';

@@ -161,6 +161,15 @@ TEST_CASE("preview data: strings cannot close the page's <script> element") {
   CHECK(json->find("M117 \\u003chi\\u003e\\u000a\\\"quoted\\\"") != std::string::npos);
 }
 
+TEST_CASE("preview data: enum and bool properties carry their value names, numbers their unit only") {
+  PreviewPrint print;
+  auto json = encode_preview_json(print);
+  REQUIRE(json.ok());
+  CHECK(json->find("[\"seam\",\"\",[\"aligned\",\"nearest\",\"rear\"]]") != std::string::npos);
+  CHECK(json->find("[\"outer_first\",\"\",[\"false\",\"true\"]]") != std::string::npos);
+  CHECK(json->find("[\"speed\",\"mm/s\"]") != std::string::npos);
+}
+
 TEST_CASE("preview data: the volumetric rate is the bead's area times speed and flow") {
   CHECK(bead_area_mm2(0.45, 0.2) == doctest::Approx(0.25 * 0.2 + M_PI * 0.01));
   CHECK(volumetric_rate_mm3_s(0.45, 0.2, 50, 0.9) == doctest::Approx((0.25 * 0.2 + M_PI * 0.01) * 50 * 0.9));
