@@ -187,6 +187,19 @@ TEST_CASE("lsp: completion by context") {
   s.open("rule { speed = 20 ");
   for (const auto& i : s.at("textDocument/completion", 0, 18)["items"])
     if (i["label"] == "mm/s") CHECK(i["sortText"] == "0mm/s");
+  // ... in a named one-line rule too, and after an earlier statement of the rule.
+  for (std::string line : {"rule \"u\" { speed = 20 ", "rule \"u\" { fan = 50%; speed = 20 "}) {
+    s.open(line);
+    int first = 0;
+    json got = s.at("textDocument/completion", 0, static_cast<int>(line.size()));
+    INFO(got.dump());
+    for (const auto& i : got["items"])
+      if (i.value("sortText", "").starts_with("0")) {
+        ++first;
+        CHECK(i["label"] == "mm/s");
+      }
+    CHECK(first == 1);
+  }
 }
 
 TEST_CASE("lsp: definition, symbols, formatting and quick fixes") {
