@@ -127,6 +127,7 @@ class Machine {
   uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
   uint16_t depth_read_ = 0;     // values read as "the rules before" being computed (for traces)
   uint64_t run_ = 0, rebuilds_ = 0;
+  Level limit_ = Level::Piece;  // candidates reading a deeper level are left out (see cand_level_)
 
   friend class RuleSet;
 };
@@ -248,8 +249,9 @@ bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
       live.key = key;
       live.owner = rs_.uid_;
     }
+    const auto& levels = rs_.cand_level_[qi];
     for (const auto& e : live.entries) {
-      if (e.candidate < start) continue;
+      if (e.candidate < start || levels[e.candidate] > limit_) continue;
       bool ok = true;
       for (uint32_t j = 0; j < e.count && ok; ++j)
         if (!conj(list[e.first + j], cands[e.candidate].rule, ok)) return false;
@@ -258,6 +260,7 @@ bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
     return index = -1, true;
   }
   for (size_t i = start; i < cands.size(); ++i) {
+    if (rs_.cand_level_[qi][i] > limit_) continue;
     bool ok;
     if (!all(list + split[i].first, split[i].outer + split[i].inner, cands[i].rule, ok)) return false;
     if (ok) return index = static_cast<int>(i), true;
@@ -690,10 +693,19 @@ void RuleSet::analyse() {
         }
       split_[static_cast<size_t>(q)].push_back(sp);
     }
+    auto& levels = cand_level_[static_cast<size_t>(q)];
+    levels.clear();
+    for (const auto& c : cands) levels.push_back(std::max(rule_level(c.rule), chunk_level[c.chunk]));
     if (cands.empty()) continue;
     stage_props_[static_cast<size_t>(st)].push_back(q);
-    Level& v = varies_[static_cast<size_t>(st)];
-    for (const auto& c : cands) v = std::max(v, std::max(rule_level(c.rule), chunk_level[c.chunk]));
+    const Stage finest = schema::finest_stage(q);
+    for (Level lv : levels) {
+      const bool finer = finest != st && lv > decided;
+      Level& v = varies_[static_cast<size_t>(finer ? finest : st)];
+      v = std::max(v, lv);
+    }
+    if (finest != st && std::any_of(levels.begin(), levels.end(), [&](Level lv) { return lv > decided; }))
+      stage_props_[static_cast<size_t>(finest)].push_back(q);
   }
 }
 
@@ -766,9 +778,14 @@ std::pair<std::string, uint32_t> RuleSet::chunk_source(uint32_t chunk) const {
 Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {
   const auto& list = stage_props_[static_cast<size_t>(stage)];
   if (list.empty()) return ok_status();
-  for (auto q : list) props.base[static_cast<size_t>(q)] = props[q];
+  // A property decided again at a finer stage starts again from what the rules started from.
+  for (auto q : list)
+    if (schema::property(q).stage == stage) props.base[static_cast<size_t>(q)] = props[q];
+    else props[q] = props.base[static_cast<size_t>(q)];
   Machine m(*this, c, &props);
   for (auto q : list) {
+    const bool finer_later = schema::finest_stage(q) != stage && schema::property(q).stage == stage;
+    m.limit_ = finer_later ? schema::stage_level(stage) : Level::Piece;
     int i;
     if (!m.winner(q, UINT32_MAX, i)) return m.error();
     if (i < 0) continue;
