@@ -150,6 +150,13 @@ TEST_CASE("lsp: hover on fields, properties, params, uses and functions") {
   CHECK(use.find("stdlib/features/bridges.rules") != std::string::npos);
   CHECK(std::string(s.at("textDocument/hover", 3, 11)["contents"]["value"]).find("min(a, b, ...)") != std::string::npos);
   CHECK(s.at("textDocument/hover", 4, 0).is_null());
+  // fill_angle: per island, and again per cell.
+  s.open("rule when cell.area < 20 mm2 { fill_angle = 0 deg }\n");
+  std::string angle = s.at("textDocument/hover", 0, 34)["contents"]["value"];
+  CHECK(angle.find("decided at the *island* stage (and again per cell by a rule that reads `cell.*`)") !=
+        std::string::npos);
+  std::string width = s.at("textDocument/hover", 0, 15)["contents"]["value"];
+  CHECK(width.find("`cell.area`") != std::string::npos);
 }
 
 TEST_CASE("lsp: completion by context") {
