@@ -18,7 +18,7 @@ double longest_edge_angle_deg(const geo::Rings& rings);
 // w² or more: the opening by the disc), or the whole island. A bar or an arm gives its width, a
 // neck between wider parts the neck's, a hole near the outline the wall between them, a square
 // or a disc its width. Rounding a corner leaves out too little to count; a spike sharper than
-// about 20° counts (its tip is thinner than anything). Found to 5 µm by doubling then bisecting.
+// about 20° counts (its tip is thinner than anything). Found to ±5 µm by doubling then bisecting.
 // 0 for an empty shape.
 double min_width_mm(const geo::Rings& rings);
 
