@@ -123,31 +123,84 @@ void add_cell_path(IslandPlan& ip, Nest& nest, const RegionFill& f, const CellPl
   ip.paths.push_back(std::move(p));
 }
 
-// The cell stage: a rule reading `cell.*` may give the cell a fill angle of its own; the cell's
-// part of the region is then filled again at that angle (its own solid grid), its zig-zags all
-// paths of the same cell.
-Status place_cell(IslandPlan& ip, Nest& nest, const RegionFill& f, CellPlan cell, toolpath::FillPath& fp,
-                  double density) {
-  if (nest.cell_angles()) {
-    nest.enter_cell(cell);
-    PropertyValues props = ip.props;
-    TraceRef unused;
-    if (Status st = nest.decide(schema::Stage::Cell, props, unused); !st) return st;
-    const double a = props[PropId::FillAngle];
-    if (std::abs(a - cell.fill_angle_deg) > 1e-9) {
-      cell.fill_angle_deg = a;
-      geo::Rings rings =
-          toolpath::cell_region(fp, f.region.rings, f.fs.angle_deg, f.fs.pitch_mm, f.fs.artificial_inset_mm);
-      RegionFill again{f.region, f.borders, f.solid, f.w, f.s, {}, 1.0, f.props, f.log};
-      fill_spec(again, rings, a, density);
-      ip.cells.push_back(cell);
-      for (toolpath::FillPath& q : toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), again.fs))
-        add_cell_path(ip, nest, again, cell, q, again.flow_scale);
-      return ok_status();
-    }
+// Whether `pt` lies in `rings` (non-zero fill; on an edge counts as in).
+bool contains(const geo::Rings& rings, const geo::Point& pt) {
+  int winding = 0;
+  for (const auto& r : rings) {
+    const int in = ClipperLib::PointInPolygon(pt, r);
+    if (in != 0) winding += ClipperLib::Orientation(r) ? 1 : -1;
   }
-  ip.cells.push_back(cell);
-  add_cell_path(ip, nest, f, cell, fp, f.flow_scale);
+  return winding > 0;
+}
+
+// The cells (of one region) whose angle the cell stage decided to be `angle`, filled again
+// together over the union of their parts of the region, so that their zig-zags run on across
+// the cuts between them. A cell's part is its core grown by a pitch and clipped to the region
+// (so that it reaches the region's border between its line ends), less the other cells' cores
+// grown by half a bead (up to the cuts their line ends stopped short of). Each new path belongs
+// to the cell its first piece starts in.
+void refill(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<toolpath::FillPath>& fps, size_t first,
+            const std::vector<size_t>& members, double angle, double density) {
+  geo::Rings others;
+  for (size_t j = 0; j < fps.size(); ++j)
+    if (std::find(members.begin(), members.end(), j) == members.end())
+      others = toolpath::union_of(others, toolpath::cell_core(fps[j], f.fs.angle_deg, f.fs.pitch_mm));
+  others = toolpath::offset(others, f.fs.artificial_inset_mm);
+  std::vector<geo::Rings> parts;
+  geo::Rings rings;
+  for (size_t i : members) {
+    geo::Rings core = toolpath::cell_core(fps[i], f.fs.angle_deg, f.fs.pitch_mm);
+    parts.push_back(toolpath::difference(
+        toolpath::intersection(toolpath::offset(core, f.fs.pitch_mm), f.region.rings), others));
+    rings = toolpath::union_of(rings, parts.back());
+    ip.cells[first + i].fill_angle_deg = angle;
+  }
+  RegionFill again{f.region, f.borders, f.solid, f.w, f.s, {}, 1.0, f.props, f.log};
+  fill_spec(again, rings, angle, density);
+  for (toolpath::FillPath& q : toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), again.fs)) {
+    size_t owner = 0;
+    if (q.pts.size() >= 2) {
+      const geo::Point mid((q.pts[0].X + q.pts[1].X) / 2, (q.pts[0].Y + q.pts[1].Y) / 2);
+      for (size_t k = 0; k < parts.size(); ++k)
+        if (contains(parts[k], mid)) {
+          owner = k;
+          break;
+        }
+    }
+    add_cell_path(ip, nest, again, ip.cells[first + members[owner]], q, again.flow_scale);
+  }
+}
+
+// The cell stage: rules reading `cell.*` may give cells fill angles of their own; the cells
+// given one angle are filled again at it (refill), the others keep their zig-zag.
+Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<toolpath::FillPath>& fps,
+                   size_t first, double density) {
+  const double island = f.fs.angle_deg;
+  std::vector<double> angles(fps.size(), island);
+  if (nest.cell_angles())
+    for (size_t i = 0; i < fps.size(); ++i) {
+      nest.enter_cell(ip.cells[first + i]);
+      PropertyValues props = ip.props;
+      TraceRef unused;
+      if (Status st = nest.decide(schema::Stage::Cell, props, unused); !st) return st;
+      angles[i] = props[PropId::FillAngle];
+    }
+  auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9; };
+  std::vector<bool> done(fps.size(), false);
+  for (size_t i = 0; i < fps.size(); ++i) {
+    if (done[i]) continue;
+    if (same(angles[i], island)) {
+      add_cell_path(ip, nest, f, ip.cells[first + i], fps[i], f.flow_scale);
+      continue;
+    }
+    std::vector<size_t> members;
+    for (size_t j = i; j < fps.size(); ++j)
+      if (!done[j] && same(angles[j], angles[i])) {
+        members.push_back(j);
+        done[j] = true;
+      }
+    refill(ip, nest, f, fps, first, members, angles[i], density);
+  }
   return ok_status();
 }
 
@@ -165,15 +218,17 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   fill_spec(f, region.rings, angle, density);
   // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.
   // Edges within a quarter bead of the island's fill border are on it (see region_shape).
-  for (toolpath::FillPath& fp : toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), f.fs)) {
+  std::vector<toolpath::FillPath> fps = toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), f.fs);
+  const size_t first = ip.cells.size();
+  for (const toolpath::FillPath& fp : fps) {
     CellPlan cell;
     cell.index = static_cast<int>(ip.cells.size());
     cell.area_mm2 = fp.area_mm2;
     cell.fill_angle_deg = angle;
     cell.solid = solid;
-    if (Status st = place_cell(ip, nest, f, cell, fp, density); !st) return st;
+    ip.cells.push_back(cell);
   }
-  return ok_status();
+  return place_cells(ip, nest, f, fps, first, density);
 }
 
 }  // namespace

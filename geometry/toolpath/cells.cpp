@@ -33,8 +33,7 @@ FillShape region_shape(const geo::Rings& region, const std::vector<const EdgeGri
   return s;
 }
 
-geo::Rings cell_region(const FillPath& cell, const geo::Rings& region, double angle_deg, double pitch_mm,
-                       double grow_mm) {
+geo::Rings cell_core(const FillPath& cell, double angle_deg, double pitch_mm) {
   const double a = angle_deg * std::numbers::pi / 180;
   const double ux = std::cos(a), uy = std::sin(a);  // along the lines; (-uy, ux) across them
   const double half = 0.5 * pitch_mm * geo::kUnitsPerMm + 1000;  // a micrometre of overlap
@@ -69,7 +68,7 @@ geo::Rings cell_region(const FillPath& cell, const geo::Rings& region, double an
   // The lines of a zig-zag run both ways: every part counter-clockwise, so that overlaps add up.
   for (auto& r : parts)
     if (!ClipperLib::Orientation(r)) ClipperLib::ReversePath(r);
-  return intersection(offset(union_of(parts), grow_mm), region);
+  return union_of(parts);
 }
 
 }  // namespace tranche::toolpath

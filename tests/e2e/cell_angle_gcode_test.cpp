@@ -114,3 +114,26 @@ TEST_CASE("fill_angle per cell: the last matching rule still wins, per island or
   REQUIRE(!lines.empty());
   CHECK(count_at(lines, 60) == lines.size());
 }
+
+TEST_CASE("fill_angle per cell: every sparse cell at one angle fills as the island at that angle") {
+  // The cells given one angle are filled together, to the region's border: no cut, no gap. The
+  // same lines and travels as when the island is given the angle, up to a connector's point at
+  // the border (the cells' union is the region up to its sharpest corners).
+  test::TempDir dir("cell-angle-all");
+  const auto plate = geo::plate_with_holes(30, 30, 4, 2, 2, 4, 24);
+  auto cells = slice(dir, "cells", plate, "rule \"sparse along x\" when not cell.solid { fill_angle = 0 deg }\n");
+  auto island = slice(dir, "island", plate, "rule \"along x\" { fill_angle = 0 deg }\n");
+  auto travels = [](const test::Gcode& g) {
+    return std::count_if(g.moves.begin(), g.moves.end(), [](const test::Move& m) {
+      return m.layer == 10 && m.type == "Internal infill" && m.has_xy && m.de <= 0;
+    });
+  };
+  double a = 0, b = 0;
+  const auto lines_a = fill_lines(cells, 10, "Internal infill", &a);
+  const auto lines_b = fill_lines(island, 10, "Internal infill", &b);
+  REQUIRE(lines_b.size() > 10);
+  CHECK(lines_a.size() == lines_b.size());
+  CHECK(count_at(lines_a, 0) == lines_a.size());
+  CHECK(a == doctest::Approx(b).epsilon(0.005));
+  CHECK(travels(cells) == travels(island));
+}
