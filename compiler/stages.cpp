@@ -79,6 +79,9 @@ std::optional<std::string> substitute(schema::FieldId f, Stage limit) {
   if (f == schema::FieldId::LayerZ && limit >= Stage::LayerPlan)
     return "`layer.z_bottom` is known while planning layer heights: use it instead (the layer's top is "
            "`layer.z_bottom` plus its height)";
+  if (f == schema::FieldId::PathKind && limit == Stage::Cell)
+    return "`cell.solid` says whether a fill cell is solid (top, bottom, bridge or internal solid): "
+           "`rule when cell.solid { fill_angle = 0 deg }` decides it per cell";
   return std::nullopt;
 }
 
