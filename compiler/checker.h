@@ -37,6 +37,7 @@ struct ExprContext {
 // levels up to `level` (hooks, replacement bodies).
 struct Limit {
   std::optional<schema::Stage> stage;
+  std::optional<schema::Stage> fields_until;  // fields known until then may be read (default: stage)
   std::optional<schema::Level> level;
   std::string what;                    // "`fill_angle` is decided per island, before any path exists"
   ast::Span site;                      // where the slot is written (a secondary label)

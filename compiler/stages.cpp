@@ -79,6 +79,9 @@ std::optional<std::string> substitute(schema::FieldId f, Stage limit) {
   if (f == schema::FieldId::LayerZ && limit >= Stage::LayerPlan)
     return "`layer.z_bottom` is known while planning layer heights: use it instead (the layer's top is "
            "`layer.z_bottom` plus its height)";
+  if (f == schema::FieldId::PathKind && limit == Stage::Cell)
+    return "`cell.solid` says whether a fill cell is solid (top, bottom, bridge or internal solid): "
+           "`rule when cell.solid { fill_angle = 0 deg }` decides it per cell";
   return std::nullopt;
 }
 
@@ -95,6 +98,11 @@ Limit Checker::limit_for(const ast::Slot& slot, const ast::Rule& r) const {
       l.stage = p.stage;
       l.prop = slot.prop;
       l.what = fmt::format("`{}` is {}", p.name, decided_at(p.stage));
+      if (schema::finest_stage(p.id) != p.stage) {  // fill_angle: again per cell
+        l.fields_until = schema::finest_stage(p.id);
+        const auto lv = schema::level_name(schema::stage_level(*l.fields_until));
+        l.what = fmt::format("`{}` is {} (or per {} by a rule that reads `{}.*`)", p.name, decided_at(p.stage), lv, lv);
+      }
       break;
     }
     case ast::SlotKind::Hook:
@@ -132,17 +140,18 @@ void Checker::require(const Expr& e, const Limit& limit, const ast::Rule& r) {
     const auto& f = schema::field(e.field);
     Stage known = e.ref == RefKind::OtherLayer ? std::max(Stage::Layer, f.stage) : f.stage;
     Level level = e.ref == RefKind::OtherLayer ? Level::Layer : f.level;
-    if (limit.stage && known > *limit.stage) {
+    const std::optional<Stage> until = limit.fields_until ? limit.fields_until : limit.stage;
+    if (until && known > *until) {
       std::string when = e.ref == RefKind::OtherLayer ? "other layers are known once every layer is sliced"
                                                       : known_at(known);
       if (auto* d =
               report("E0300", fmt::format("{}, so `{}` ({}) cannot be read here", limit.what, shown, when),
                      "not known yet")) {
-        if (auto s = substitute(e.field, *limit.stage)) d->help(*s);
+        if (auto s = substitute(e.field, *until)) d->help(*s);
         if (d->helps.empty())
           d->help(fmt::format("read what is {} (the fields of `{}` and the levels above it), or set a property "
                               "decided later",
-                              known_at(*limit.stage), schema::level_name(schema::stage_level(*limit.stage))));
+                              known_at(*until), schema::level_name(schema::stage_level(*until))));
       }
     } else if (limit.level && level > *limit.level) {
       std::string of = e.ref == RefKind::OtherLayer ? "another layer"

@@ -168,7 +168,20 @@ class Printer {
     if (prev == L::MINUS && !ends_operand(before)) return false;  // a unary minus
     if ((next == L::LPAREN || next == L::LBRACK) && prev == L::IDENT) return false;  // `min(`, `layers[`
     if ((next == L::PERCENT || next == L::DEGREE) && prev == L::NUMBER) return false;
+    if (per_time(i) || per_time(i + 1)) return false;  // `1200 mm/min` stays one (wrong) unit
     return true;
+  }
+
+  // Whether tokens i - 2 .. i + 1 are `NUMBER mm / min` (or `/ h`): another slicer's unit, which
+  // the checker reports as one (E0106); spaced out it would read as a division.
+  bool per_time(size_t i) const {
+    if (i < 3 || i >= t_.size() || t_[i - 1].type != L::SLASH) return false;
+    const Tok& number = t_[i - 3];
+    const Tok& unit = t_[i - 2];
+    const Tok& time = t_[i];
+    if (i + 1 < t_.size() && t_[i + 1].type == L::LPAREN) return false;  // `mm / min(a, b)`
+    return number.type == L::NUMBER && unit.type == L::IDENT && time.type == L::IDENT &&
+           (unit.text == "mm" || unit.text == "mm3") && (time.text == "min" || time.text == "h");
   }
 
   void gap_in_statement(size_t i, int indent) {

@@ -107,7 +107,9 @@ std::string compared_unit(const std::string& before) {
 void add_units(Items& items, const std::string& before) {
   std::string want;
   std::smatch a;
-  static const std::regex target_re(R"(^\s*(\w+)\s*=)");
+  // The property of the statement being typed: at the start of the line, or after the `{` or
+  // `;` of a one-line rule (`rule "u" { speed = 20 `).
+  static const std::regex target_re(R"((?:^|[{;])\s*(\w+)\s*=[^=;{}]*$)");
   if (std::regex_search(before, a, target_re)) {
     if (auto prop = schema::find_property(a[1].str())) {
       const auto& info = schema::property(*prop);

@@ -36,6 +36,9 @@ std::string value_text(double v, const ast::Type& type) {
 std::string property_text(const schema::PropInfo& p) {
   std::string s = fmt::format("**`{}`** — property, {}\n\ndecided at the *{}* stage", p.name,
                               type_text(p.type, p.unit, p.enum_type), schema::stage_name(p.stage));
+  if (schema::finest_stage(p.id) != p.stage)
+    s += fmt::format(" (and again per {} by a rule that reads `{}.*`)", schema::stage_name(schema::finest_stage(p.id)),
+                     schema::level_name(schema::stage_level(schema::finest_stage(p.id))));
   if (p.type == schema::Type::Number || p.type == schema::Type::Int)
     s += fmt::format("; physical range {} – {}", quantity(p.min, p.unit), quantity(p.max, p.unit));
   std::string def = p.type == schema::Type::Enum   ? std::string(schema::enum_value_name(p.enum_type, static_cast<int>(p.default_value)))

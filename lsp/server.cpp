@@ -1,6 +1,7 @@
 #include "lsp/server.h"
 
 #include <chrono>
+#include <ctime>
 #include <iostream>
 
 #include "lsp/features.h"
@@ -51,10 +52,12 @@ Document* Server::find(const json& params) {
 
 void Server::analyze(Document& doc, std::vector<json>& out) {
   auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   retired_.push_back(std::move(doc.analysis));
   doc.analysis = lsp::analyze(doc.path, doc.text, options_);
   cache_->sweep();
   last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  last_cpu_ms_ = 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   out.push_back({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", publish_diagnostics(doc)}});
 }
 
@@ -101,7 +104,7 @@ json Server::request(const std::string& method, const json& params, bool& handle
     shutdown_ = true;
     return nullptr;
   }
-  if (method == "$/tranche/stats") return {{"lastAnalysisMs", last_ms_}, {"documents", docs_.size()}};
+  if (method == "$/tranche/stats") return {{"lastAnalysisMs", last_ms_}, {"lastAnalysisCpuMs", last_cpu_ms_}, {"documents", docs_.size()}};
   Document* doc = params.contains("textDocument") ? find(params) : nullptr;
   if (method == "textDocument/hover") return doc ? hover(*doc, params.at("position")) : json(nullptr);
   if (method == "textDocument/completion")

@@ -45,6 +45,7 @@ class Server {
   std::map<std::string, std::unique_ptr<Document>> docs_;
   bool initialized_ = false, shutdown_ = false, exited_ = false;
   double last_ms_ = 0;
+  double last_cpu_ms_ = 0;  // processor time of that analysis (every thread), ms
 };
 
 }  // namespace tranche::lsp

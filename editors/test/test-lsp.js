@@ -1,8 +1,9 @@
 #!/usr/bin/env node
 // Drives `rulec lsp` as an editor does: spawns it, talks JSON-RPC over its standard input and
 // output through vscode-jsonrpc (the transport of VS Code's language client), and checks the
-// answers: initialize, diagnostics as a document is opened and edited, hover, completion, go to
-// definition, document symbols, formatting, quick fixes, shutdown and exit.
+// answers: initialize, diagnostics as a document is opened and edited (related locations, the
+// Unnecessary tag), hover, completion (fields, enum values, units), go to definition (params,
+// `use`s, the rules a W201 names), document symbols, formatting, quick fixes, shutdown and exit.
 // Usage: node test-lsp.js NODE_MODULES_DIR RULEC
 'use strict';
 const path = require('path');
@@ -109,8 +110,33 @@ async function main() {
   const compField = await conn.sendRequest('textDocument/completion', { textDocument: doc, position: pos(2, 23) });
   check(compField.items.some((i) => i.label === 'z_bottom'), 'fields after layer.', compField.items.map((i) => i.label));
 
+  // A rule that never takes effect: W201, faded (tag Unnecessary = 1), and from its header the
+  // definition goes to the rule that overrides it.
   ready = diagnosticsOf(4);
-  conn.sendNotification('textDocument/didChange', { textDocument: { uri, version: 4 }, contentChanges: [{ text: 'rule "x"when layer.index<2{speed=20 mm/s}\n' }] });
+  conn.sendNotification('textDocument/didChange', { textDocument: { uri, version: 4 }, contentChanges: [{ text:
+    'rule "early" { speed = 30 mm/s }\nrule "late" { speed = 40 mm/s }\n' }] });
+  d = (await ready).diagnostics;
+  const w201 = d.find((x) => x.code === 'W201');
+  check(w201 && w201.range.start.line === 0, 'W201 on the rule that never takes effect', d);
+  check(w201 && Array.isArray(w201.tags) && w201.tags.length === 1 && w201.tags[0] === 1, 'W201 tagged unnecessary', w201);
+  const defRule = await conn.sendRequest('textDocument/definition', { textDocument: doc, position: pos(0, 8) });
+  check(Array.isArray(defRule) && defRule.length === 1 && defRule[0].range.start.line === 1 && defRule[0].uri === uri,
+        'definition from a W201 rule goes to the rule that overrides it', defRule);
+
+  // Units after a number: the unit of the property being set first.
+  ready = diagnosticsOf(5);
+  conn.sendNotification('textDocument/didChange', { textDocument: { uri, version: 5 }, contentChanges: [
+    { range: { start: pos(2, 0), end: pos(2, 0) }, text: 'rule "u" { speed = 20 ' }] });
+  await ready;
+  const compUnit = await conn.sendRequest('textDocument/completion', { textDocument: doc, position: pos(2, 22) });
+  const units = (compUnit && compUnit.items || []).slice().sort((a, b) =>
+    (a.sortText || a.label).localeCompare(b.sortText || b.label));
+  check(units.length > 0 && units[0].label === 'mm/s' && units.every((i) => i.kind === units[0].kind) &&
+        units.some((i) => i.label === 'mm') && !units.some((i) => i.label === 'speed'),
+        'units after a number, the property\'s first', units.map((i) => i.label));
+
+  ready = diagnosticsOf(6);
+  conn.sendNotification('textDocument/didChange', { textDocument: { uri, version: 6 }, contentChanges: [{ text: 'rule "x"when layer.index<2{speed=20 mm/s}\n' }] });
   await ready;
   const edits = await conn.sendRequest('textDocument/formatting', { textDocument: doc, options: { tabSize: 2, insertSpaces: true } });
   check(edits.length === 1 && edits[0].newText === 'rule "x" when layer.index < 2 { speed = 20 mm/s }\n', 'formatting', edits);

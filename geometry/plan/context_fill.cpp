@@ -36,6 +36,11 @@ void set_island_fields(ctx::Context& c, const IslandPlan& i) {
   c.set(FieldId::IslandCenterY, i.center_y);
   c.set(FieldId::IslandCells, static_cast<double>(i.cells.size()));
   c.set(FieldId::ObjectIndex, i.object);
+  c.set(FieldId::IslandLongestEdgeAngle, i.longest_edge_angle);
+  c.set(FieldId::IslandMinWidth, i.min_width);
+  c.set(FieldId::IslandConvex, i.convex ? 1 : 0);
+  c.set(FieldId::IslandBelowArea, i.below_area);
+  c.set(FieldId::IslandBelowSupported, i.below_supported);
 }
 
 void set_cell_fields(ctx::Context& c, const CellPlan& cell) {
@@ -124,6 +129,16 @@ void IslandsView::bind(ctx::Context& c, const std::vector<IslandPlan>& list) {
         return static_cast<double>(isl.cells.size());
       case FieldId::ObjectIndex:
         return static_cast<double>(isl.object);
+      case FieldId::IslandLongestEdgeAngle:
+        return isl.longest_edge_angle;
+      case FieldId::IslandMinWidth:
+        return isl.min_width;
+      case FieldId::IslandConvex:
+        return isl.convex ? 1.0 : 0.0;
+      case FieldId::IslandBelowArea:
+        return isl.below_area;
+      case FieldId::IslandBelowSupported:
+        return isl.below_supported;
       default:
         return 0.0;
     }

@@ -1,10 +1,12 @@
 #include "geometry/plan/island_content.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/toolpath/cells.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/flow.h"
+#include "geometry/toolpath/island_shape.h"
 #include "geometry/toolpath/perimeters.h"
 #include "geometry/toolpath/zigzag.h"
 
@@ -16,7 +18,37 @@ using schema::PropId;
 using toolpath::EdgeGrid;
 using toolpath::FillRegion;
 
-void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, bool relations) {
+IslandNeeds IslandNeeds::of(const Nest& nest) {
+  using schema::FieldId;
+  IslandNeeds n;
+  n.relations = nest.reads(FieldId::IslandSupported) || nest.reads(FieldId::IslandCovered);
+  n.edge_angle = nest.reads(FieldId::IslandLongestEdgeAngle);
+  n.min_width = nest.reads(FieldId::IslandMinWidth);
+  n.convex = nest.reads(FieldId::IslandConvex);
+  n.below = nest.reads(FieldId::IslandBelowArea) || nest.reads(FieldId::IslandBelowSupported);
+  return n;
+}
+
+namespace {
+
+// island.below_area and island.below_supported: the island of the layer below that overlaps
+// this one most, and how much of it lies on the layer under it (all of it on the first layer).
+void measure_below(IslandPlan& ip, toolpath::Neighbours& nb) {
+  ip.below_area = ip.below_supported = 0;
+  const geo::Layer* below = nb.at(-1);
+  if (!below) return;
+  const int i = toolpath::island_under(ip.shape, *below);
+  if (i < 0) return;
+  const geo::Polygon& p = below->islands[static_cast<size_t>(i)].shape;
+  geo::Rings rings{p.outer};
+  rings.insert(rings.end(), p.holes.begin(), p.holes.end());
+  ip.below_area = toolpath::area_mm2(rings);
+  ip.below_supported = nb.index() == 1 ? 1.0 : toolpath::fraction_on(rings, nb.layer(-2));
+}
+
+}  // namespace
+
+void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, const IslandNeeds& needs) {
   ip.area = toolpath::area_mm2(ip.shape);
   ip.border_length = 0;
   ip.holes = 0;
@@ -31,13 +63,146 @@ void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbour
     ip.center_x = geo::to_mm((b.min_x + b.max_x) / 2 + shift.X);
     ip.center_y = geo::to_mm((b.min_y + b.max_y) / 2 + shift.Y);
   }
-  if (relations) {
+  if (needs.relations) {
     ip.supported = nb.index() == 0 ? 1.0 : toolpath::fraction_on(ip.shape, nb.layer(-1));
     ip.covered = toolpath::fraction_on(ip.shape, nb.layer(1));
   }
+  if (needs.edge_angle) ip.longest_edge_angle = toolpath::longest_edge_angle_deg(ip.shape);
+  if (needs.min_width) ip.min_width = toolpath::min_width_mm(ip.shape);
+  if (needs.convex) ip.convex = toolpath::is_convex(ip.shape);
+  if (needs.below) measure_below(ip, nb);
 }
 
 namespace {
+
+// What the paths of one fill region share.
+struct RegionFill {
+  const FillRegion& region;
+  const std::vector<const EdgeGrid*>& borders;
+  bool solid;
+  double w, s;  // bead width and spacing (mm)
+  toolpath::FillSpec fs;
+  double flow_scale = 1.0;
+  PropertyValues props;
+  TraceRef log;
+};
+
+// The spec of a fill at `angle` over `rings`: sparse lines on the bed's grid; solid ones border
+// to border of `rings` (the whole region, or a cell filled again), shared by its cells.
+void fill_spec(RegionFill& f, const geo::Rings& rings, double angle, double density) {
+  f.fs.angle_deg = angle;
+  f.fs.pitch_mm = f.s / std::min(density, 1.0);
+  f.fs.artificial_inset_mm = 0.5 * f.s;
+  f.flow_scale = 1.0;
+  if (f.solid) {
+    toolpath::SolidGrid g = toolpath::region_grid(toolpath::across_range(rings, angle), f.s);
+    f.fs.origin_mm = g.origin_mm;
+    f.fs.pitch_mm = g.pitch_mm;
+    f.flow_scale = std::clamp(g.ratio, 0.6, 1.4);
+  }
+  // Zig-zags that cannot continue one another are joined by a walk along the border of at most
+  // five line pitches (sparse: 11 mm at 20 %, about PrusaSlicer's 12 mm infill anchors) or 16
+  // beads (solid: 6.7 mm, half the way round a 4 mm hole). On the Stanford bunny, solid links of
+  // 2 / 8 / 16 beads leave 5192 / 4529 / 4228 trips.
+  f.fs.link_max_mm = f.solid ? 16 * f.s : 5 * f.fs.pitch_mm;
+}
+
+void add_cell_path(IslandPlan& ip, Nest& nest, const RegionFill& f, const CellPlan& cell, toolpath::FillPath& fp,
+                   double flow_scale) {
+  PathPlan p;
+  p.kind = f.region.kind;
+  p.cell = cell.index;
+  p.width = static_cast<float>(f.w);
+  p.flow_scale = static_cast<float>(flow_scale);
+  if (f.solid) p.border_flow = 0.5f;
+  p.pts = std::move(fp.pts);
+  p.border = std::move(fp.border);
+  p.props = f.props;
+  p.props[PropId::FillAngle] = cell.fill_angle_deg;
+  p.trace = nest.path_log(f.log);
+  ip.paths.push_back(std::move(p));
+}
+
+// Whether `pt` lies in `rings` (non-zero fill; on an edge counts as in).
+bool contains(const geo::Rings& rings, const geo::Point& pt) {
+  int winding = 0;
+  for (const auto& r : rings) {
+    const int in = ClipperLib::PointInPolygon(pt, r);
+    if (in != 0) winding += ClipperLib::Orientation(r) ? 1 : -1;
+  }
+  return winding > 0;
+}
+
+// The cells (of one region) whose angle the cell stage decided to be `angle`, filled again
+// together over the union of their parts of the region, so that their zig-zags run on across
+// the cuts between them. A cell's part is its core grown by a pitch and clipped to the region
+// (so that it reaches the region's border between its line ends), less the other cells' cores
+// grown by half a bead (up to the cuts their line ends stopped short of). Each new path belongs
+// to the cell its first piece starts in.
+void refill(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<toolpath::FillPath>& fps, size_t first,
+            const std::vector<size_t>& members, double angle, double density) {
+  geo::Rings others;
+  for (size_t j = 0; j < fps.size(); ++j)
+    if (std::find(members.begin(), members.end(), j) == members.end())
+      others = toolpath::union_of(others, toolpath::cell_core(fps[j], f.fs.angle_deg, f.fs.pitch_mm));
+  others = toolpath::offset(others, f.fs.artificial_inset_mm);
+  std::vector<geo::Rings> parts;
+  geo::Rings rings;
+  for (size_t i : members) {
+    geo::Rings core = toolpath::cell_core(fps[i], f.fs.angle_deg, f.fs.pitch_mm);
+    parts.push_back(toolpath::difference(
+        toolpath::intersection(toolpath::offset(core, f.fs.pitch_mm), f.region.rings), others));
+    rings = toolpath::union_of(rings, parts.back());
+    ip.cells[first + i].fill_angle_deg = angle;
+  }
+  RegionFill again{f.region, f.borders, f.solid, f.w, f.s, {}, 1.0, f.props, f.log};
+  fill_spec(again, rings, angle, density);
+  for (toolpath::FillPath& q : toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), again.fs)) {
+    size_t owner = 0;
+    if (q.pts.size() >= 2) {
+      const geo::Point mid((q.pts[0].X + q.pts[1].X) / 2, (q.pts[0].Y + q.pts[1].Y) / 2);
+      for (size_t k = 0; k < parts.size(); ++k)
+        if (contains(parts[k], mid)) {
+          owner = k;
+          break;
+        }
+    }
+    add_cell_path(ip, nest, again, ip.cells[first + members[owner]], q, again.flow_scale);
+  }
+}
+
+// The cell stage: rules reading `cell.*` may give cells fill angles of their own; the cells
+// given one angle are filled again at it (refill), the others keep their zig-zag.
+Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<toolpath::FillPath>& fps,
+                   size_t first, double density) {
+  const double island = f.fs.angle_deg;
+  std::vector<double> angles(fps.size(), island);
+  if (nest.cell_angles())
+    for (size_t i = 0; i < fps.size(); ++i) {
+      nest.enter_cell(ip.cells[first + i]);
+      PropertyValues props = ip.props;
+      TraceRef unused;
+      if (Status st = nest.decide(schema::Stage::Cell, props, unused); !st) return st;
+      angles[i] = props[PropId::FillAngle];
+    }
+  auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9; };
+  std::vector<bool> done(fps.size(), false);
+  for (size_t i = 0; i < fps.size(); ++i) {
+    if (done[i]) continue;
+    if (same(angles[i], island)) {
+      add_cell_path(ip, nest, f, ip.cells[first + i], fps[i], f.flow_scale);
+      continue;
+    }
+    std::vector<size_t> members;
+    for (size_t j = i; j < fps.size(); ++j)
+      if (!done[j] && same(angles[j], angles[i])) {
+        members.push_back(j);
+        done[j] = true;
+      }
+    refill(ip, nest, f, fps, first, members, angles[i], density);
+  }
+  return ok_status();
+}
 
 // One fill region's cells: a zig-zag per cell, on the region's grid of lines at `angle`.
 Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const std::vector<const EdgeGrid*>& borders,
@@ -46,48 +211,24 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   TraceRef log;
   auto props = nest.path_props(ip.props, region.kind, -1, &log);
   if (!props) return props.error();
-  double w = (*props)[PropId::Width];
-  double s = toolpath::bead_spacing_mm(w, height_mm);
-  double density = solid ? 1.0 : (*props)[PropId::InfillDensity];
+  const double w = (*props)[PropId::Width];
+  const double density = solid ? 1.0 : (*props)[PropId::InfillDensity];
   if (density <= 0) return ok_status();
-  toolpath::FillSpec fs;
-  fs.angle_deg = angle;
-  fs.pitch_mm = s / std::min(density, 1.0);
-  fs.artificial_inset_mm = 0.5 * s;
-  double flow_scale = 1.0;
-  if (solid) {  // border to border of the whole region, shared by its cells
-    toolpath::SolidGrid g = toolpath::region_grid(toolpath::across_range(region.rings, angle), s);
-    fs.origin_mm = g.origin_mm;
-    fs.pitch_mm = g.pitch_mm;
-    flow_scale = std::clamp(g.ratio, 0.6, 1.4);
-  }
-  // Zig-zags that cannot continue one another are joined by a walk along the border of at most
-  // five line pitches (sparse: 11 mm at 20 %, about PrusaSlicer's 12 mm infill anchors) or 16
-  // beads (solid: 6.7 mm, half the way round a 4 mm hole). On the Stanford bunny, solid links of
-  // 2 / 8 / 16 beads leave 5192 / 4529 / 4228 trips.
-  fs.link_max_mm = solid ? 16 * s : 5 * fs.pitch_mm;
+  RegionFill f{region, borders, solid, w, toolpath::bead_spacing_mm(w, height_mm), {}, 1.0, *props, log};
+  fill_spec(f, region.rings, angle, density);
   // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.
   // Edges within a quarter bead of the island's fill border are on it (see region_shape).
-  for (toolpath::FillPath& fp : toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), fs)) {
+  std::vector<toolpath::FillPath> fps = toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), f.fs);
+  const size_t first = ip.cells.size();
+  for (const toolpath::FillPath& fp : fps) {
     CellPlan cell;
     cell.index = static_cast<int>(ip.cells.size());
     cell.area_mm2 = fp.area_mm2;
     cell.fill_angle_deg = angle;
     cell.solid = solid;
     ip.cells.push_back(cell);
-    PathPlan p;
-    p.kind = region.kind;
-    p.cell = cell.index;
-    p.width = static_cast<float>(w);
-    p.flow_scale = static_cast<float>(flow_scale);
-    if (solid) p.border_flow = 0.5f;
-    p.pts = std::move(fp.pts);
-    p.border = std::move(fp.border);
-    p.props = *props;
-    p.trace = nest.path_log(log);
-    ip.paths.push_back(std::move(p));
   }
-  return ok_status();
+  return place_cells(ip, nest, f, fps, first, density);
 }
 
 }  // namespace

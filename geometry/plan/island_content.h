@@ -20,9 +20,18 @@ struct FillGrid {
   toolpath::EdgeGrid grid;
 };
 
-// Sets the island.* fields of `ip` from its shape (mm, mm², bed coordinates with `shift`);
-// island.supported and island.covered, which cost a boolean each, only when `relations`.
-void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, bool relations);
+// The island fields that cost more than a pass over the outline, each computed only when a rule,
+// hook or replacer reads it.
+struct IslandNeeds {
+  bool relations = false;  // island.supported, island.covered: a boolean each
+  bool edge_angle = false, min_width = false, convex = false;
+  bool below = false;      // island.below_area, island.below_supported
+  static IslandNeeds of(const Nest& nest);
+};
+
+// Sets the island.* fields of `ip` from its shape (mm, mm², bed coordinates with `shift`); the
+// costly ones only when `needs` says so (else 0).
+void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, const IslandNeeds& needs);
 
 // Builds ip.paths (unordered) and ip.cells from ip.shape and ip.props, at layer height `height_mm`;
 // `regions` gets each fill region's edges. Replaces what ip held before (a replacer's `default`

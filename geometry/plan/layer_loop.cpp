@@ -25,7 +25,7 @@ class LayerTask final : public IslandHost {
  public:
   LayerTask(const setup::PrintSetup& s, const ctx::Cascade& c, int index)
       : S(s), nest_(s, c), L(index), nb_(s.layers, index) {
-    relations_ = nest_.reads(FieldId::IslandSupported) || nest_.reads(FieldId::IslandCovered);
+    needs_ = IslandNeeds::of(nest_);
     overhang_ = nest_.reads(FieldId::PieceOverhang);
   }
 
@@ -37,7 +37,7 @@ class LayerTask final : public IslandHost {
   // IslandHost (island replacers).
   Nest& nest() override { return nest_; }
   Status redecide_island(IslandPlan& ip) override {
-    measure_island(ip, S.shift, nb_, relations_);
+    measure_island(ip, S.shift, nb_, needs_);
     nest_.enter_island(ip);
     ip.props = plan_.props;
     ip.trace.reset();
@@ -58,7 +58,8 @@ class LayerTask final : public IslandHost {
   Nest nest_;
   int L;
   toolpath::Neighbours nb_;
-  bool relations_ = false, overhang_ = false;  // costly fields, computed only when read
+  IslandNeeds needs_;     // costly fields, computed only when read
+  bool overhang_ = false;
   LayerPlan plan_;
   std::vector<std::vector<FillGrid>> regions_;  // per island (by index): its fill regions' edges
 };

@@ -10,6 +10,7 @@ Nest::Nest(const setup::PrintSetup& setup, const ctx::Cascade& cascade)
     : S(setup), C(cascade), ctx_(setup.print_ctx) {
   per_piece_ = C.varies_at(Stage::Piece) == Level::Piece;
   cooling_at_ = C.varies_at(Stage::Cooling);
+  cell_angles_ = C.varies_at(Stage::Cell) >= Level::Cell;
 }
 
 void Nest::enter_layer(const LayerPlan& layer, int islands) {
@@ -26,6 +27,11 @@ void Nest::enter_path(const IslandPlan* ip, const PathPlan& p) {
   ctx_.clear_from(Level::Cell);
   if (ip && p.cell >= 0) set_cell_fields(ctx_, ip->cells[static_cast<size_t>(p.cell)]);
   set_path_fields(ctx_, p);
+}
+
+void Nest::enter_cell(const CellPlan& cell) {
+  ctx_.clear_from(Level::Cell);
+  set_cell_fields(ctx_, cell);
 }
 
 void Nest::enter_piece(const PathPlan& p, size_t i) { set_piece_fields(ctx_, p, i, S.shift); }

@@ -26,6 +26,8 @@ class Nest {
   // The path (of island `ip`, or a skirt path when null) and its cell, if any.
   void enter_path(const IslandPlan* ip, const PathPlan& p);
   void enter_piece(const PathPlan& p, size_t i);
+  // A fill cell of the island entered last, before its paths exist.
+  void enter_cell(const CellPlan& cell);
   // A path of `kind` about to be built (path.kind and path.perimeter known, nothing else).
   void enter_path_plan(schema::PathKind kind, int perimeter);
 
@@ -50,6 +52,7 @@ class Nest {
 
   // What the rules need, known before the loop starts.
   bool per_piece() const { return per_piece_; }          // speed/flow vary along a path
+  bool cell_angles() const { return cell_angles_; }      // fill_angle is decided again per cell
   schema::Level cooling_at() const { return cooling_at_; }  // the deepest level the fan varies at
   bool executes() const { return C.executors() != nullptr; }
   bool replaces(schema::Level level) const { return C.replacers() && C.replacers()->has(level); }
@@ -62,6 +65,7 @@ class Nest {
   PathView path_view_;
   IslandsView islands_view_;
   bool per_piece_ = false;
+  bool cell_angles_ = false;
   schema::Level cooling_at_ = schema::Level::Layer;
 };
 

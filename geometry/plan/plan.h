@@ -108,6 +108,11 @@ struct IslandPlan {
   double supported = 0, covered = 0;                          // computed only when a rule reads them
   double size_x = 0, size_y = 0, center_x = 0, center_y = 0;  // centre in bed coordinates
   int holes = 0;
+  // Computed only when a rule reads them: the outline's longest stretch (deg), the narrowest
+  // width (mm), convexity; the island under this one (mm², ratio).
+  double longest_edge_angle = 0, min_width = 0;
+  bool convex = false;
+  double below_area = 0, below_supported = 0;
   ctx::PropertyValues props;  // as decided at the island stage
   TraceRef trace;             // provenance of the island stage (when recorded)
   std::vector<CellPlan> cells;

@@ -20,4 +20,12 @@ namespace tranche::toolpath {
 FillShape region_shape(const geo::Rings& region, const std::vector<const EdgeGrid*>& borders,
                        double on_border_mm);
 
+// The core of a cell, the zig-zag `cell` at `angle_deg`: each of its lines (the pieces that run
+// along no border) widened to a strip one `pitch_mm` wide, with the quadrilateral between each
+// two neighbouring lines (which fills the notches the strips leave where the border runs slanted
+// to the lines). Its ends stop at the line ends. A cell whose fill angle is decided apart from its
+// island's is filled again in its core grown to the region's border and to the cuts (see
+// geometry/plan/island_content.cpp).
+geo::Rings cell_core(const FillPath& cell, double angle_deg, double pitch_mm);
+
 }  // namespace tranche::toolpath

@@ -27,6 +27,11 @@ class Neighbours {
   int index() const { return index_; }
   // Material of layer index + k (k may be negative); empty outside the print.
   const geo::Rings& layer(int k);
+  // Layer index + k itself (its islands), or null outside the print.
+  const geo::Layer* at(int k) const {
+    const int i = index_ + k;
+    return i >= 0 && static_cast<size_t>(i) < layers_.size() ? &layers_[static_cast<size_t>(i)] : nullptr;
+  }
   // Region covered by all of the `n` layers above (n ≥ 1), resp. below; empty when any of them is
   // outside the print (a top or the bed-side bottom).
   const geo::Rings& all_above(int n);

@@ -211,7 +211,7 @@ Result<Overrides> Overrides::parse(const std::vector<std::pair<std::string, std:
 
 Status Overrides::decide(schema::Stage stage, const Context& ctx, PropertyValues& props) const {
   for (const auto& o : items_) {
-    if (schema::property(o.prop).stage != stage) continue;
+    if (schema::property(o.prop).stage != stage && schema::finest_stage(o.prop) != stage) continue;
     props[o.prop] = o.value;
     if (Trace* t = ctx.trace()) t->step({o.prop, recorded_as, UINT32_MAX, UINT32_MAX, o.value, 0});
   }

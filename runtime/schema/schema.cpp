@@ -135,6 +135,8 @@ std::string_view unit_name(Unit u) {
   return "";
 }
 
+Stage finest_stage(PropId id) { return id == PropId::FillAngle ? Stage::Cell : property(id).stage; }
+
 uint64_t schema_hash() {
   uint64_t h = 1469598103934665603ull;  // FNV-1a
   auto mix = [&h](std::string_view s) {
@@ -156,6 +158,7 @@ uint64_t schema_hash() {
     mixn(static_cast<int>(p.type));
     mixn(static_cast<int>(p.unit));
     mixn(static_cast<int>(p.enum_type));
+    mixn(static_cast<int>(finest_stage(p.id)));
   }
   for (const auto& e : enum_tables().infos) {
     mix(e.name);

@@ -139,6 +139,11 @@ std::string_view level_name(Level);   // "print", "layer", ...
 std::string_view stage_name(Stage);   // "print", "layer planning", ...
 std::string_view unit_name(Unit);     // "mm/s", "°C", "" for None
 Level stage_level(Stage);             // the context level a stage belongs to
+// The last stage at which a property may be decided again for a finer element: its own stage,
+// except fill_angle, decided per island and again per fill cell by rules that read `cell.*`
+// (the island's fill is cut into cells at the island's angle; a cell decided otherwise is
+// filled again at its own angle).
+Stage finest_stage(PropId);
 
 // A stable 64-bit hash of every table above (names, types, units, stages, enum values, in
 // order). Bundles record it; a bundle compiled against another schema is refused.

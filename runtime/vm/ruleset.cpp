@@ -161,10 +161,19 @@ void RuleSet::analyse_splits(const ChunkFacts& facts) {
         }
       split_[static_cast<size_t>(q)].push_back(sp);
     }
+    auto& levels = cand_level_[static_cast<size_t>(q)];
+    levels.clear();
+    for (const auto& c : cands) levels.push_back(std::max(rule_level(c.rule), chunk_level[c.chunk]));
     if (cands.empty()) continue;
     stage_props_[static_cast<size_t>(st)].push_back(q);
-    Level& v = varies_[static_cast<size_t>(st)];
-    for (const auto& c : cands) v = std::max(v, std::max(rule_level(c.rule), chunk_level[c.chunk]));
+    const Stage finest = schema::finest_stage(q);
+    for (Level lv : levels) {
+      const bool finer = finest != st && lv > decided;
+      Level& v = varies_[static_cast<size_t>(finer ? finest : st)];
+      v = std::max(v, lv);
+    }
+    if (finest != st && std::any_of(levels.begin(), levels.end(), [&](Level lv) { return lv > decided; }))
+      stage_props_[static_cast<size_t>(finest)].push_back(q);
   }
 }
 

@@ -157,8 +157,9 @@ bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
       live.key = key;
       live.owner = rs_.uid_;
     }
+    const auto& levels = rs_.cand_level_[qi];
     for (const auto& e : live.entries) {
-      if (e.candidate < start) continue;
+      if (e.candidate < start || levels[e.candidate] > limit_) continue;
       bool ok = true;
       for (uint32_t j = 0; j < e.count && ok; ++j)
         if (!conj(list[e.first + j], cands[e.candidate].rule, ok)) return false;
@@ -167,6 +168,7 @@ bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
     return index = -1, true;
   }
   for (size_t i = start; i < cands.size(); ++i) {
+    if (rs_.cand_level_[qi][i] > limit_) continue;
     bool ok;
     if (!all(list + split[i].first, split[i].outer + split[i].inner, cands[i].rule, ok)) return false;
     if (ok) return index = static_cast<int>(i), true;
@@ -487,9 +489,14 @@ Error Machine::error() const {
 Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {
   const auto& list = stage_props_[static_cast<size_t>(stage)];
   if (list.empty()) return ok_status();
-  for (auto q : list) props.base[static_cast<size_t>(q)] = props[q];
+  // A property decided again at a finer stage starts again from what the rules started from.
+  for (auto q : list)
+    if (schema::property(q).stage == stage) props.base[static_cast<size_t>(q)] = props[q];
+    else props[q] = props.base[static_cast<size_t>(q)];
   Machine m(*this, c, &props);
   for (auto q : list) {
+    const bool finer_later = schema::finest_stage(q) != stage && schema::property(q).stage == stage;
+    m.limit_ = finer_later ? schema::stage_level(stage) : Level::Piece;
     int i;
     if (!m.winner(q, UINT32_MAX, i)) return m.error();
     if (i < 0) continue;

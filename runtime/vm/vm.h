@@ -119,6 +119,10 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   std::array<std::vector<Split>, schema::kPropCount> split_;
   std::vector<uint32_t> split_list_;
   std::array<schema::Level, schema::kPropCount> decided_at_{};  // the level each property is decided at
+  // Per property and candidate: the deepest level its rule and value read. A property decided
+  // again at a finer stage (schema::finest_stage: fill_angle per cell) leaves the candidates
+  // reading that finer level out of its own stage's decision.
+  std::array<std::vector<schema::Level>, schema::kPropCount> cand_level_;
   struct Range {
     bool plain = false;  // a number without unit conversion: in range means stored as is
     double min = 0, max = 0;

@@ -128,3 +128,35 @@ TEST_CASE("diagnostics: SARIF 2.1.0, one result per diagnostic with its primary 
   // An empty run is still a valid log.
   CHECK(compiler::render_sarif(c.program.sources, {}).find("\"results\":[]") != std::string::npos);
 }
+
+TEST_CASE("diagnostics: a block left open is shown where it opened as well as where the parse failed") {
+  test::Compiled c;
+  test::compile_text(c, "rule \"a\" when layer.index < 2 {\n  speed = 20 mm/s\nrule \"b\" { flow = 1 }\n");
+  c.sink.finish({});
+  const diag::Diagnostic* d = nullptr;
+  for (const auto& x : c.sink.all())
+    if (x.code == "E0004" && c.program.sources.line_col(x.span().file, x.span().offset).first == 3)
+      d = &x;
+  REQUIRE(d != nullptr);
+  const diag::Label* open = nullptr;
+  for (const auto& l : d->labels)
+    if (!l.primary) open = &l;
+  REQUIRE(open != nullptr);
+  CHECK(c.program.sources.line_col(open->span.file, open->span.offset) == std::pair<uint32_t, uint32_t>{1, 31});
+  CHECK(c.program.sources.text(open->span) == "{");
+  CHECK(open->text == "this `{` is not closed before the next item");
+  CHECK(d->helps.size() == 1);
+  CHECK(d->helps[0] == "close the block with `}` before `rule`");
+  std::string text = compiler::render_text(c.program.sources, *d, false);
+  CHECK(text ==
+        "error[E0004]: expected `}` or a newline, found `rule`\n"
+        " --> test.rules:3:1\n"
+        "  |\n"
+        "1 | rule \"a\" when layer.index < 2 {\n"
+        "  |                               - this `{` is not closed before the next item\n"
+        "3 | rule \"b\" { flow = 1 }\n"
+        "  | ^^^^ expected `}` or a newline\n"
+        "  |\n"
+        "  = help: close the block with `}` before `rule`\n"
+        "  = docs: docs/diagnostics.md#e0004\n");
+}

@@ -58,6 +58,10 @@ TEST_CASE("fmt: spacing around operators, units, brackets and commas") {
         "rule when layer.z in 0.1 mm..0.3 mm and path.kind in (infill, bridge) { fan = 0 }\n");
   CHECK(fmt_ok("rule { replace path { offset -0.1 mm\nmove to(1 mm,2 mm)travel with speed=1 mm/s } }\n") ==
         "rule {\n  replace path {\n    offset -0.1 mm\n    move to (1 mm, 2 mm) travel with speed = 1 mm/s\n  }\n}\n");
+  // Another slicer's `mm/min` stays written as one unit (the checker reports it, E0106); a
+  // division by a name or by `min(...)` is spaced as any division.
+  CHECK(fmt_ok("rule{speed=1200 mm/min}\n") == "rule { speed = 1200 mm/min }\n");
+  CHECK(fmt_ok("rule{width=0.9 mm/min(2,3)/k}\n") == "rule { width = 0.9 mm / min(2, 3) / k }\n");
 }
 
 TEST_CASE("fmt: indentation, statements one per line, blank lines, `{` and `else`") {

@@ -150,6 +150,13 @@ TEST_CASE("lsp: hover on fields, properties, params, uses and functions") {
   CHECK(use.find("stdlib/features/bridges.rules") != std::string::npos);
   CHECK(std::string(s.at("textDocument/hover", 3, 11)["contents"]["value"]).find("min(a, b, ...)") != std::string::npos);
   CHECK(s.at("textDocument/hover", 4, 0).is_null());
+  // fill_angle: per island, and again per cell.
+  s.open("rule when cell.area < 20 mm2 { fill_angle = 0 deg }\n");
+  std::string angle = s.at("textDocument/hover", 0, 34)["contents"]["value"];
+  CHECK(angle.find("decided at the *island* stage (and again per cell by a rule that reads `cell.*`)") !=
+        std::string::npos);
+  std::string width = s.at("textDocument/hover", 0, 15)["contents"]["value"];
+  CHECK(width.find("`cell.area`") != std::string::npos);
 }
 
 TEST_CASE("lsp: completion by context") {
@@ -187,6 +194,19 @@ TEST_CASE("lsp: completion by context") {
   s.open("rule { speed = 20 ");
   for (const auto& i : s.at("textDocument/completion", 0, 18)["items"])
     if (i["label"] == "mm/s") CHECK(i["sortText"] == "0mm/s");
+  // ... in a named one-line rule too, and after an earlier statement of the rule.
+  for (std::string line : {"rule \"u\" { speed = 20 ", "rule \"u\" { fan = 50%; speed = 20 "}) {
+    s.open(line);
+    int first = 0;
+    json got = s.at("textDocument/completion", 0, static_cast<int>(line.size()));
+    INFO(got.dump());
+    for (const auto& i : got["items"])
+      if (i.value("sortText", "").starts_with("0")) {
+        ++first;
+        CHECK(i["label"] == "mm/s");
+      }
+    CHECK(first == 1);
+  }
 }
 
 TEST_CASE("lsp: definition, symbols, formatting and quick fixes") {

@@ -161,3 +161,33 @@ TEST_CASE("layer loop: islands know their object, so rules set per-object values
     CHECK(ip.props[PropId::InfillDensity] == doctest::Approx(ip.object == 1 ? 0.4 : 0.2));
   }
 }
+
+TEST_CASE("layer loop: island shape and the island under it, measured when a rule reads them") {
+  // Layers 0-1: a 20 mm square and a 4 × 30 mm bar beside it; layers 2-3: the bar only, and a
+  // square over the square's corner.
+  auto layers = prism_layers(4, {square_mm(0, 0, 20, 20), square_mm(30, 0, 34, 30)});
+  for (int i = 2; i < 4; ++i) layers[static_cast<size_t>(i)].islands[0].shape.outer = square_mm(10, 10, 25, 25);
+  const char* rules =
+      "rule when island.min_width < 5 mm and island.convex { perimeters = 1 }\n"
+      "rule when island.below_area > 300 mm2 and island.below_supported > 90% { infill_density = 50% }\n"
+      "rule when island.longest_edge_angle > 45 deg { top_layers = 5 }\n";
+  PrintFixture f(layers, rules, {{"skirt_loops", "0"}});
+  auto lp = f.plan(2);
+  REQUIRE(lp.islands.size() == 2);
+  for (const auto& ip : lp.islands) {
+    const bool bar = ip.area < 200;  // 120 mm², the square 225
+    CHECK(ip.min_width == doctest::Approx(bar ? 4 : 15).epsilon(0.01));
+    CHECK(ip.convex);
+    CHECK(ip.longest_edge_angle == doctest::Approx(bar ? 90 : 0));
+    // Under the bar, the bar (120 mm²); under the square, the 20 mm square (400 mm²), on layer 0.
+    CHECK(ip.below_area == doctest::Approx(bar ? 120 : 400).epsilon(1e-6));
+    CHECK(ip.below_supported == doctest::Approx(1));
+    CHECK(ip.props[PropId::Perimeters] == (bar ? 1 : 2));
+    CHECK(ip.props[PropId::InfillDensity] == doctest::Approx(bar ? 0.2 : 0.5));
+    CHECK(ip.props[PropId::TopLayers] == (bar ? 5 : 3));
+  }
+  // On layer 0 nothing is under an island; without rules reading them nothing is measured.
+  for (const auto& ip : f.plan(0).islands) CHECK(ip.below_area == 0);
+  PrintFixture plain(layers, "", {{"skirt_loops", "0"}});
+  for (const auto& ip : plain.plan(2).islands) CHECK((ip.min_width == 0 && !ip.convex && ip.below_area == 0));
+}

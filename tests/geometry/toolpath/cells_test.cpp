@@ -141,3 +141,26 @@ TEST_CASE("cells: a solid region grown into the perimeters has its whole outer e
   CHECK(on_border > 20);
   CHECK(real == on_border);
 }
+
+TEST_CASE("cells: a cell's core is the part of the region its lines fill, in one piece") {
+  // A 20 mm square with a 6 mm hole: at 30° its region is cut into several cells.
+  geo::Rings region{test::rect(0, 0, 20, 20), test::rect(7, 7, 13, 13, false)};
+  EdgeGrid border(region);
+  FillSpec spec;
+  spec.angle_deg = 30;
+  spec.pitch_mm = 2;
+  spec.artificial_inset_mm = 0.2;
+  auto cells = zigzag(region_shape(region, {&border}, 0.1), spec);
+  REQUIRE(cells.size() >= 2);
+  geo::Rings all;
+  for (const auto& c : cells) {
+    geo::Rings core = cell_core(c, spec.angle_deg, spec.pitch_mm);
+    // One piece without holes or slits (the lines of a zig-zag run both ways), about as large
+    // as what its lines fill.
+    CHECK(core.size() == 1);
+    CHECK(area_mm2(core) == doctest::Approx(c.area_mm2).epsilon(0.1));
+    all = union_of(all, core);
+  }
+  // Grown by half a bead and clipped, the cores cover the region, overlapping only at the cuts.
+  CHECK(area_mm2(intersection(offset(all, 0.2), region)) == doctest::Approx(area_mm2(region)).epsilon(0.02));
+}
