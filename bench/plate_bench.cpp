@@ -189,7 +189,8 @@ int arrange(const std::string& dir, const std::string& peer) {
   if (peer.empty()) return 0;
   auto objects = plate::load_model_file(peer, report);
   if (!objects) return fail(objects.error().to_string());
-  plate::Plate theirs{std::move(*objects)};
+  plate::Plate theirs;
+  theirs.objects = std::move(*objects);
   if (theirs.objects.size() != 50) return fail(fmt::format("{} has {} objects, not 50", peer, theirs.objects.size()));
   Report peer_report;
   (void)plate::check_plate(theirs, plate::Bed{.size_x_mm = 1e4, .size_y_mm = 1e4, .origin_x_mm = -5e3, .origin_y_mm = -5e3},

@@ -161,6 +161,7 @@ Result<Plate> build_plate(const PlateOptions& options, const Bed& bed, Report& r
   if (Status s = apply_transforms(*plate, options, bed, report); !s) return s.error();
   if (Status s = place_objects(*plate, options, bed); !s) return s.error();
   if (Status s = check_plate(*plate, bed, options.allow_off_bed, report); !s) return s.error();
+  plate->bed = bed;
   return plate;
 }
 
