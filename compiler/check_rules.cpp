@@ -329,6 +329,9 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
           .note(fmt::format("`{}` values are {}", info.name, quoted_list(values, 12)));
       return false;
     }
+    case Kind::Text:  // no property is a name
+      fail("E0213", fmt::format("`{}` cannot be set from {}", target, got.describe()), "a name");
+      return false;
     case Kind::Error:
       return false;
   }
@@ -643,6 +646,12 @@ void Checker::text(ast::Template& t, ExprContext& ctx) {
     if (!p.expr) continue;
     Type type = expr(*p.expr, ctx);
     if (type.is_error()) continue;
+    if (type.kind == Kind::Text) {
+      sink_
+          .error("E0213", p.span, "a name cannot be printed in a template", "a name")
+          .help("a name is only compared with quoted text: `when object.name == \"lid\" { ... }`");
+      continue;
+    }
     if (p.decimals >= 0 && !type.numeric())
       sink_
           .error("E0207", p.span,

@@ -257,7 +257,7 @@ class Generator {
   uint16_t string(const std::string& s) {
     auto [it, fresh] = strings_.try_emplace(s, static_cast<uint16_t>(p_.strings.size()));
     if (fresh) {
-      if (p_.strings.size() >= vm::kMaxStrings) throw CodegenLimit{"more than 65536 distinct template texts"};
+      if (p_.strings.size() >= vm::kMaxStrings) throw CodegenLimit{"more than 65536 distinct texts (templates and names)"};
       p_.strings.push_back(s);
     }
     return it->second;
@@ -392,6 +392,11 @@ class Generator {
         break;
       case ExprKind::Quantifier:
         quantifier(e, dst);
+        break;
+      case ExprKind::String:
+        // Quoted text compared with a name: its index in the strings, the value the name takes
+        // for the same text (vm::RuleSet::text_index); linking keeps each text once.
+        emit(VOp::LoadS, d, string(e.str));
         break;
       default:
         // Names, members and strings are resolved (ref) or reported by the checker.

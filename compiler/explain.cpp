@@ -29,6 +29,7 @@ std::string show(double v, schema::Type type, schema::Unit unit, schema::EnumTyp
     case schema::Type::Bool: return v != 0 ? "true" : "false";
     case schema::Type::Enum: return std::string(schema::enum_value_name(et, static_cast<int>(v)));
     case schema::Type::Int: return fmt::format("{:g}", v);
+    case schema::Type::Text: return v < 0 ? "a name no rule compares with" : fmt::format("text {:g}", v);
     case schema::Type::Number: break;
   }
   if (unit == schema::Unit::Ratio) return fmt::format("{:g}%", v * 100);
@@ -64,6 +65,7 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   ctx::Context c;
   std::vector<std::pair<PropId, double>> given_props;
   std::set<FieldId> given;
+  std::map<FieldId, std::string> texts;  // name fields as given
   std::string_view rest = at;
   while (!trim(rest).empty()) {
     size_t comma = rest.find(',');
@@ -74,7 +76,14 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
     if (eq == std::string_view::npos)
       return Error{"--at", fmt::format("`{}` needs a value: write `name=value`", item)};
     std::string_view name = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
-    if (schema::find_field(name)) {
+    if (auto tf = schema::find_field(name); tf && schema::field(*tf).type == schema::Type::Text) {
+      // A name (`object.name=lid`): the index of its text among the rules' texts, as when slicing.
+      std::string text(value.size() >= 2 && value.front() == '"' && value.back() == '"' ? value.substr(1, value.size() - 2)
+                                                                                          : value);
+      c.set(*tf, rs.text_index(text));
+      given.insert(*tf);
+      texts[*tf] = text;
+    } else if (schema::find_field(name)) {
       auto v = ctx::parse_field_value(name, value);
       if (!v) return Error{"--at", v.error().message};
       c.set(*schema::find_field(name), *v);
@@ -125,7 +134,9 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   }
   out += "context:";
   if (given.empty() && given_props.empty()) out += " (nothing given)";
-  for (FieldId f : given) out += fmt::format(" {} = {};", schema::field(f).name, show_field(f, c.get(f)));
+  for (FieldId f : given)
+    out += fmt::format(" {} = {};", schema::field(f).name,
+                       texts.count(f) ? fmt::format("\"{}\"", texts[f]) : show_field(f, c.get(f)));
   for (auto [q, v] : given_props) out += fmt::format(" {} = {} (below the rules);", schema::property(q).name, show_prop(q, v));
   if (out.back() == ';') out.pop_back();
   out += "\n";

@@ -168,16 +168,19 @@ Result<SlicedPlate> slice_plate(const plate::Plate& plate, const ctx::Cascade& c
   }
   out.facts.placed = true;
   out.facts.shift = parts[0].shift;
-  for (const plate::Object& o : plate.objects) out.facts.objects.push_back(plate::display_name(o));
+  for (const plate::Object& o : plate.objects) {
+    out.facts.objects.push_back(plate::display_name(o));
+    out.facts.names.push_back(o.name);
+  }
   progress.finish(fmt::format("{} triangles", out.triangles));
   auto print = decide_print(cascade, out.facts);
   if (!print) return print.error();
   out.print = std::move(*print);
+  if (plate.bed)
+    if (Status s = same_bed(*plate.bed, out.print.props); !s) return s.error();
   auto planned = plan_heights(cascade, out.print, out.facts.height,
                               plate.objects.size() == 1 ? plate.objects[0].file : std::string("the plate"));
   if (!planned) return planned.error();
-  if (plate.bed)
-    if (Status s = same_bed(*plate.bed, out.print.props); !s) return s.error();
   out.layers = std::move(*planned);
   for (size_t k = 0; k < parts.size(); ++k) {
     Part& part = parts[k];

@@ -36,6 +36,7 @@ void set_island_fields(ctx::Context& c, const IslandPlan& i) {
   c.set(FieldId::IslandCenterY, i.center_y);
   c.set(FieldId::IslandCells, static_cast<double>(i.cells.size()));
   c.set(FieldId::ObjectIndex, i.object);
+  c.set(FieldId::ObjectName, i.object_text);
 }
 
 void set_cell_fields(ctx::Context& c, const CellPlan& cell) {
@@ -124,6 +125,8 @@ void IslandsView::bind(ctx::Context& c, const std::vector<IslandPlan>& list) {
         return static_cast<double>(isl.cells.size());
       case FieldId::ObjectIndex:
         return static_cast<double>(isl.object);
+      case FieldId::ObjectName:
+        return static_cast<double>(isl.object_text);
       default:
         return 0.0;
     }

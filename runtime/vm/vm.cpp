@@ -356,6 +356,7 @@ bool Machine::exec(uint32_t ci, double& result) {
 #endif
 
   CASE(LoadK) r[A] = K[B]; NEXT;
+  CASE(LoadS) r[A] = B; NEXT;
   CASE(Field) r[A] = F[B]; NEXT;
   CASE(Prop) r[A] = props_->values[B]; NEXT;
   CASE(Inherit) {
@@ -743,6 +744,23 @@ std::string RuleSet::rule_where(uint32_t r) const {
   const Loc& l = d.locs[d.rule_loc[r]];
   if (l.line == 0) return d.files[l.file];
   return fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col);
+}
+
+int RuleSet::text_index(std::string_view name) const {
+  const auto& s = program_.strings;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s[i] == name) return static_cast<int>(i);  // the verifier makes each text unique
+  return -1;
+}
+
+std::vector<std::string> RuleSet::compared_texts() const {
+  std::vector<bool> used(program_.strings.size(), false);
+  for (const Instr& in : program_.code)
+    if (in.code() == Op::LoadS && in.b < used.size()) used[in.b] = true;
+  std::vector<std::string> out;
+  for (size_t i = 0; i < used.size(); ++i)
+    if (used[i]) out.push_back(program_.strings[i]);
+  return out;
 }
 
 std::string RuleSet::rule_label(uint32_t r) const {
