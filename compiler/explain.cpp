@@ -191,7 +191,8 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
       std::string values;
       for (uint16_t f : fields) {
         auto id = static_cast<FieldId>(f);
-        values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", schema::field(id).name, show_field(id, c.get(id)));
+        values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", schema::field(id).name,
+                              texts.count(id) ? fmt::format("\"{}\"", texts[id]) : show_field(id, c.get(id)));
       }
       return fmt::format("`{}` is false{}", text, values.empty() ? "" : " (" + values + ")");
     }

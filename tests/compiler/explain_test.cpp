@@ -81,3 +81,11 @@ TEST_CASE("explain: --slot shows only the slots asked for, and refuses names tha
   REQUIRE_FALSE(bad.ok());
   CHECK(bad.error().message.find("not a slot") != std::string::npos);
 }
+
+TEST_CASE("explain: a name given with --at is matched as the slicer matches it") {
+  const std::string rules = "rule \"lid\" when object.name == \"lid\" { infill_density = 40% }\n";
+  CHECK(explain(rules, "object.name=lid").find("infill_density = 40%\n  decided by rule \"lid\"") != std::string::npos);
+  const std::string base = explain(rules, "object.name=\"base\"");
+  CHECK(base.find("context: object.name = \"base\"") != std::string::npos);
+  CHECK(base.find("`object.name == \"lid\"` is false (object.name = \"base\")") != std::string::npos);
+}
