@@ -220,13 +220,13 @@ Status print_sequential(SlicedPlate& in, const setup::PrintSetup& all, LayerOutp
 void name_objects(setup::PrintSetup& setup, const setup::PrintFacts& facts, const vm::RuleSet* rules, Report& report) {
   for (const std::string& name : facts.names) setup.object_texts.push_back(rules ? rules->text_index(name) : -1);
   if (!rules) return;
-  for (const std::string& text : rules->compared_texts()) {
+  for (const auto& [text, where] : rules->compared_texts()) {
     if (std::find(facts.names.begin(), facts.names.end(), text) != facts.names.end()) continue;
     std::string names;
     for (size_t i = 0; i < facts.names.size() && i < 12; ++i)
       if (names.find(fmt::format("'{}'", facts.names[i])) == std::string::npos)
         names += fmt::format("{}'{}'", names.empty() ? "" : ", ", facts.names[i]);
-    report.warn("object-name", "rules",
+    report.warn("object-name", where.empty() ? "rules" : where,
                 fmt::format("the rules compare object.name with \"{}\", but no object has that name (the names: {})",
                             text, names));
   }

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "runtime/vm/verify.h"
@@ -753,13 +754,22 @@ int RuleSet::text_index(std::string_view name) const {
   return -1;
 }
 
-std::vector<std::string> RuleSet::compared_texts() const {
-  std::vector<bool> used(program_.strings.size(), false);
-  for (const Instr& in : program_.code)
-    if (in.code() == Op::LoadS && in.b < used.size()) used[in.b] = true;
-  std::vector<std::string> out;
-  for (size_t i = 0; i < used.size(); ++i)
-    if (used[i]) out.push_back(program_.strings[i]);
+std::vector<std::pair<std::string, std::string>> RuleSet::compared_texts() const {
+  const Debug& d = program_.debug;
+  std::vector<std::optional<std::string>> where(program_.strings.size());
+  for (size_t pc = 0; pc < program_.code.size(); ++pc) {
+    const Instr& in = program_.code[pc];
+    if (in.code() != Op::LoadS || in.b >= where.size() || where[in.b]) continue;
+    std::string at;
+    if (pc < d.instr_loc.size() && d.instr_loc[pc] < d.locs.size()) {
+      const Loc& l = d.locs[d.instr_loc[pc]];
+      if (l.file < d.files.size()) at = l.line ? fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col) : d.files[l.file];
+    }
+    where[in.b] = std::move(at);
+  }
+  std::vector<std::pair<std::string, std::string>> out;
+  for (size_t i = 0; i < where.size(); ++i)
+    if (where[i]) out.emplace_back(program_.strings[i], std::move(*where[i]));
   return out;
 }
 

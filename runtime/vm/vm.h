@@ -53,8 +53,9 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   // program's strings, which holds every quoted text the rules compare names with; -1 when no
   // rule names it (then `object.name == "..."` is false and `!=` true for every text).
   int text_index(std::string_view name) const;
-  // Every quoted text the rules compare a name with, in the order of the strings.
-  std::vector<std::string> compared_texts() const;
+  // Every quoted text the rules compare a name with, in the order of the strings, with where it
+  // is first written ("file:line:col"; empty without debug information).
+  std::vector<std::pair<std::string, std::string>> compared_texts() const;
 
   // ctx::Decider
   Status decide(schema::Stage stage, const ctx::Context& ctx, ctx::PropertyValues& props) const override;

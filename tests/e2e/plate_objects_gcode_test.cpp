@@ -99,9 +99,11 @@ TEST_CASE("plate e2e: rules on object.name: a 3MF object's name, an STL's file n
   // "plinth" names no object on the plate: a likely typo, said once, with the names there are.
   REQUIRE(report.count("object-name") == 1);
   for (const Warning& w : report.warnings())
-    if (w.code == "object-name")
+    if (w.code == "object-name") {
+      CHECK(w.where.ends_with("objects.rules:2:46"));
       CHECK(w.message == "the rules compare object.name with \"plinth\", but no object has that name (the names: "
                          "'lid', 'base')");
+    }
 }
 
 TEST_CASE("plate e2e: a bed that depends on the plate is refused: the plate is placed on the bed first") {

@@ -235,7 +235,11 @@ TEST_CASE("names: quoted text is interned once, a name's field holds its index, 
   CHECK((*rs)->text_index("lid") == 0);
   CHECK((*rs)->text_index("cap") == 1);
   CHECK((*rs)->text_index("base") == -1);
-  CHECK((*rs)->compared_texts() == std::vector<std::string>{"lid", "cap"});
+  const auto texts = (*rs)->compared_texts();
+  REQUIRE(texts.size() == 2);
+  CHECK(texts[0].first == "lid");
+  CHECK(texts[1].first == "cap");
+  CHECK(texts[1].second == "test.rules:1:43");  // where "cap" is written
   auto decided = [&](int text) {
     ctx::Context c;
     c.clear_from(Level::Layer);
