@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "compiler/load_rules.h"
+#include "geometry/pipeline/load_plate.h"
 #include "geometry/plate/detect.h"
 #include "geometry/plate/plate.h"
 #include "runtime/context/cascade.h"
@@ -50,26 +51,17 @@ Result<std::shared_ptr<const vm::RuleSet>> compile(const pipeline::SliceOptions&
   return compiler::load_rules(in, report);
 }
 
-// The bed the printer profile describes (bed_size_x, bed_size_y; rectangular, origin 0, 0; no
-// height limit yet), from the compiled rules and the plain --set overrides.
+// The bed the printer profile describes (bed_shape, bed_size_x/y, bed_origin_x/y,
+// max_print_height), from the compiled rules and the plain --set overrides. It is decided before
+// the plate exists, since placing the objects needs it: pipeline::decide_bed says why, and the
+// pipeline's print stage checks that it gives the same bed.
 Result<plate::Bed> bed_from_profile(const pipeline::SliceOptions& options, const vm::RuleSet* rules) {
   std::vector<std::pair<std::string, std::string>> plain;
   for (const auto& [k, v] : options.sets)
     if (ctx::is_plain_override(k, v)) plain.emplace_back(k, v);
   auto cascade = ctx::Cascade::create(plain, rules, rules, rules);
   if (!cascade) return cascade.error();
-  auto props = (*cascade)->print_props(ctx::Context{});
-  if (!props) return props.error();
-  plate::Bed bed;
-  const auto& P = *props;
-  bed.shape = P[schema::PropId::BedShape] == static_cast<double>(schema::BedShape::Circular) ? plate::Bed::Shape::Circle
-                                                                                            : plate::Bed::Shape::Rectangle;
-  bed.size_x_mm = P[schema::PropId::BedSizeX];
-  bed.size_y_mm = bed.shape == plate::Bed::Shape::Circle ? bed.size_x_mm : P[schema::PropId::BedSizeY];
-  bed.origin_x_mm = P[schema::PropId::BedOriginX];
-  bed.origin_y_mm = P[schema::PropId::BedOriginY];
-  bed.max_height_mm = P[schema::PropId::MaxPrintHeight];
-  return bed;
+  return pipeline::decide_bed(**cascade);
 }
 
 }  // namespace

@@ -2,12 +2,15 @@
 //   plate_bench load DIR [RUNS]        10 objects, 2 000 000 triangles: the same meshes as 10
 //                                      STL files and as one 3MF; load time of each (best of
 //                                      RUNS, default 3), their ratio against the goal (1.5), and
-//                                      the time only inflating the 3MF's model part takes
+//                                      the time only inflating the 3MF's model part takes, and
+//                                      lib3mf reading the whole package alone (what the loader used to do)
 //   plate_bench write-objects DIR      the arrangement's 50 objects as DIR/obj00.stl ... obj49.stl
 //   plate_bench arrange DIR [PEER.3mf] arranges them on a 250 × 210 mm bed, 6 mm apart: time
 //                                      (best of 3) and packing density (hull areas over the pile's
 //                                      bounding box), and the same density of PEER.3mf (the same
 //                                      objects as PrusaSlicer arranged them)
+#include <Model/COM/NMR_DLLInterfaces.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -98,12 +101,26 @@ int load(const std::string& dir, int runs) {
     model_bytes = model ? model->size() : 0;
     return model.ok();
   });
+  // lib3mf alone reading the package into its model (inflating included), before we read a vertex.
+  const double lib3mf_s = best_of(runs, [&] {
+    NMR::PLib3MFModel* model = nullptr;
+    NMR::PLib3MFModelReader* reader = nullptr;
+    bool ok = NMR::lib3mf_createmodel(&model) == LIB3MF_OK &&
+              NMR::lib3mf_model_queryreader(model, "3mf", &reader) == LIB3MF_OK &&
+              NMR::lib3mf_reader_readfrombuffer(reader, reinterpret_cast<BYTE*>(const_cast<char*>(bytes->view().data())),
+                                                bytes->view().size()) == LIB3MF_OK;
+    if (reader) NMR::lib3mf_release(reader);
+    if (model) NMR::lib3mf_release(model);
+    return ok;
+  });
   fmt::print("{:<34} {:>10} {:>9} {:>9} {:>8}\n", "input (10 objects)", "triangles", "file MB", "load s", "vs STL");
   fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8}\n", "10 binary STL files", triangles, stl_bytes / 1e6, stl_s, "1.00");
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f}   goal 1.5: {}\n", "one 3MF (lib3mf)", triangles,
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f}   goal 1.5: {}\n", "one 3MF (mesh scanner + lib3mf)", triangles,
              fs::file_size(three) / 1e6, three_s, three_s / stl_s, three_s / stl_s <= 1.5 ? "met" : "MISSED");
   fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f}   (zlib alone: the floor of any 3MF reader)\n",
              fmt::format("  inflating its model part only"), "", model_bytes / 1e6, inflate_s, inflate_s / stl_s);
+  fmt::print("{:<34} {:>10} {:>9} {:>9.3f} {:>8.2f}   (lib3mf's XML reader, inflating included)\n",
+             "  lib3mf reading the package only", "", "", lib3mf_s, lib3mf_s / stl_s);
   return 0;
 }
 
@@ -189,7 +206,8 @@ int arrange(const std::string& dir, const std::string& peer) {
   if (peer.empty()) return 0;
   auto objects = plate::load_model_file(peer, report);
   if (!objects) return fail(objects.error().to_string());
-  plate::Plate theirs{std::move(*objects)};
+  plate::Plate theirs;
+  theirs.objects = std::move(*objects);
   if (theirs.objects.size() != 50) return fail(fmt::format("{} has {} objects, not 50", peer, theirs.objects.size()));
   Report peer_report;
   (void)plate::check_plate(theirs, plate::Bed{.size_x_mm = 1e4, .size_y_mm = 1e4, .origin_x_mm = -5e3, .origin_y_mm = -5e3},

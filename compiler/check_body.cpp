@@ -328,6 +328,12 @@ void Checker::text(ast::Template& t, ExprContext& ctx) {
     if (!p.expr) continue;
     Type type = expr(*p.expr, ctx);
     if (type.is_error()) continue;
+    if (type.kind == Kind::Text) {
+      sink_
+          .error("E0213", p.span, "a name cannot be printed in a template", "a name")
+          .help("a name is only compared with quoted text: `when object.name == \"lid\" { ... }`");
+      continue;
+    }
     if (p.decimals >= 0 && !type.numeric())
       sink_
           .error("E0207", p.span,

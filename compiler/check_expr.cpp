@@ -43,8 +43,9 @@ Type Checker::expr(Expr& e, ExprContext& ctx, schema::EnumType hint) {
       t = Type::boolean();
       break;
     case ExprKind::String: {
+      // Quoted text compared with a name is typed by text_compare; anywhere else it is no value.
       auto& d = sink_.error("E0206", e.span, "a string is not a value here",
-                            "strings are only used by `gcode` and `comment`");
+                            "quoted text is a `gcode` or `comment` template, or a name compared with `object.name`");
       d.help("to compare with an enum value, write the name without quotes: `path.kind == infill`");
       // `"infill"` where a name is meant: the name without its quotes.
       if (e.text.size() > 2 && e.text.find_first_of(" \\{}") == std::string::npos && e.text[0] == '"' &&
@@ -237,15 +238,25 @@ Type Checker::binary(Expr& e, ExprContext& ctx) {
 }
 
 Type Checker::compare(Expr& e, ExprContext& ctx) {
+  if (auto t = text_compare(e, ctx)) return *t;
   // A bare enum value is resolved against the other side: `infill == path.kind` works too.
   size_t first = is_bare_name(*e.args[0]) && !is_bare_name(*e.args[1]) ? 1 : 0;
   Type t[2];
   t[first] = expr(*e.args[first], ctx);
   // `path.knd == infill`: the enum value cannot be judged once the field is unknown.
   if (t[first].is_error() && is_bare_name(*e.args[1 - first])) return Type::error();
+  if (t[first].kind == Kind::Text && is_bare_name(*e.args[1 - first]) && !names_value(*e.args[1 - first], ctx)) {
+    text_operand(*e.args[1 - first], *e.args[first]);  // `object.name == lid`: the word is meant quoted
+    return Type::error();
+  }
   t[1 - first] = expr(*e.args[1 - first], ctx,
                       t[first].kind == Kind::Enum ? t[first].enum_type : schema::EnumType::None);
   if (t[0].is_error() || t[1].is_error()) return Type::error();
+  if (t[0].kind == Kind::Text || t[1].kind == Kind::Text) {
+    const size_t name = t[0].kind == Kind::Text ? 0 : 1;
+    text_operand(*e.args[1 - name], *e.args[name]);
+    return Type::error();
+  }
   bool equality = e.op == Op::Eq || e.op == Op::Ne;
   if (t[0].numeric() && t[1].numeric()) {
     if (!same_units(*e.args[0], *e.args[1], e.text_span, "compare")) return Type::error();
@@ -304,6 +315,10 @@ Type Checker::in_range(Expr& e, ExprContext& ctx) {
 Type Checker::in_set(Expr& e, ExprContext& ctx) {
   Type x = expr(*e.args[0], ctx);
   bool ok = !x.is_error();
+  if (x.kind == Kind::Text) {  // `object.name in ("lid", "base")`
+    for (size_t i = 1; i < e.args.size(); ++i) ok = text_operand(*e.args[i], *e.args[0]) && ok;
+    return ok ? Type::boolean() : Type::error();
+  }
   auto hint = x.kind == Kind::Enum ? x.enum_type : schema::EnumType::None;
   for (size_t i = 1; i < e.args.size(); ++i) {
     Type t = expr(*e.args[i], ctx, hint);

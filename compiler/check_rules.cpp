@@ -322,6 +322,9 @@ bool Checker::assignable(Expr& value, const Type& want, std::string_view target,
           .note(fmt::format("`{}` values are {}", info.name, quoted_list(values, 12)));
       return false;
     }
+    case Kind::Text:  // no property is a name
+      fail("E0213", fmt::format("`{}` cannot be set from {}", target, got.describe()), "a name");
+      return false;
     case Kind::Error:
       return false;
   }

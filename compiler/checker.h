@@ -96,6 +96,9 @@ class Checker {
   ast::Type binary(ast::Expr& e, ExprContext& ctx);
   ast::Type compare(ast::Expr& e, ExprContext& ctx);
   ast::Type in_set(ast::Expr& e, ExprContext& ctx);
+  std::optional<ast::Type> text_compare(ast::Expr& e, ExprContext& ctx);
+  bool text_operand(ast::Expr& text, const ast::Expr& name);
+  bool names_value(const ast::Expr& e, ExprContext& ctx);
   ast::Type in_range(ast::Expr& e, ExprContext& ctx);
   ast::Type if_expr(ast::Expr& e, ExprContext& ctx, schema::EnumType hint);
   ast::Type quantifier(ast::Expr& e, ExprContext& ctx);

@@ -132,6 +132,11 @@ void Generator::into(const Expr& e, int dst) {
     case ExprKind::Quantifier:
       quantifier(e, dst);
       break;
+    case ExprKind::String:
+      // Quoted text compared with a name: its index in the strings, the value the name takes
+      // for the same text (vm::RuleSet::text_index); linking keeps each text once.
+      emit(VOp::LoadS, d, string(e.str));
+      break;
     default:
       // Names, members and strings are resolved (ref) or reported by the checker.
       emit(VOp::LoadK, d, konst(0));

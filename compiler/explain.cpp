@@ -173,7 +173,9 @@ std::string Explainer::read_values(const vm::Chunk& ch) const {
     const long layer = current + rel - 2;
     const std::string name = rel == 0 ? std::string(schema::field(id).name) : at_.layer_field_name(layer, id);
     const double v = rel == 0 ? at_.context.get(id) : at_.context.layer(layer, id);
-    values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", name, field_text(id, v));
+    const bool text = rel == 0 && at_.texts.count(id);
+    values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", name,
+                          text ? fmt::format("\"{}\"", at_.texts.at(id)) : field_text(id, v));
   }
   return values;
 }
@@ -280,6 +282,7 @@ Result<std::string> explain(const ast::Program& program, const vm::RuleSet& rs, 
   if (Status s = check_slots(only); !s) return s.error();
   ExplainAt at;
   if (Status s = parse_explain_at(at_text, at); !s) return s.error();
+  resolve_texts(at, rs);
   // Decide every stage as the slicer would, through the same cascade, recording the chains:
   // built-in defaults, the given values (where a --fill-angle-script's angle would sit), the rules.
   auto cascade = ctx::Cascade::create({}, &rs);

@@ -115,6 +115,7 @@ std::string field_text(FieldId f, double v) {
     case schema::Type::Bool: return v != 0 ? "true" : "false";
     case schema::Type::Enum: return std::string(schema::enum_value_name(i.enum_type, static_cast<int>(v)));
     case schema::Type::Int: return fmt::format("{:g}", v);
+    case schema::Type::Text: return v < 0 ? "a name no rule compares with" : fmt::format("text {:g}", v);
     case schema::Type::Number: break;
   }
   if (i.unit == schema::Unit::Ratio) return fmt::format("{:g}%", v * 100);
@@ -132,7 +133,9 @@ std::string ExplainAt::layer_field_name(long index, FieldId field) const {
 
 std::string ExplainAt::text() const {
   std::vector<std::string> items;
-  for (FieldId f : given) items.push_back(fmt::format("{} = {}", schema::field(f).name, field_text(f, context.get(f))));
+  for (FieldId f : given)
+    items.push_back(fmt::format("{} = {}", schema::field(f).name,
+                                texts.count(f) ? fmt::format("\"{}\"", texts.at(f)) : field_text(f, context.get(f))));
   for (const auto& [key, v] : other)
     items.push_back(fmt::format("{} = {}", layer_field_name(key.first, key.second), field_text(key.second, v)));
   for (const auto& [q, v] : props)
@@ -162,6 +165,11 @@ Status parse_explain_at(const std::string& at, ExplainAt& out) {
       if (!v) return Error{"--at", fmt::format("`{}`: {}", name, v.error().message)};
       others.emplace_back(std::string(name), **other);
       values.push_back(*v);
+    } else if (auto tf = schema::find_field(name); tf && schema::field(*tf).type == schema::Type::Text) {
+      // A name (`object.name=lid`, quotes optional): matched by its text, as when slicing.
+      const bool quoted = value.size() >= 2 && value.front() == '"' && value.back() == '"';
+      out.texts[*tf] = std::string(quoted ? value.substr(1, value.size() - 2) : value);
+      out.given.insert(*tf);
     } else if (auto f = schema::find_field(name)) {
       auto v = ctx::parse_field_value(name, value);
       if (!v) return Error{"--at", v.error().message};

@@ -21,6 +21,9 @@ struct ExplainAt {
   std::set<schema::FieldId> given;                       // the element's fields
   std::map<std::pair<long, schema::FieldId>, double> other;  // (layer index, field) of other layers
   std::vector<std::pair<schema::PropId, double>> props;  // below the rules, in order
+  // Name fields as given (`object.name=lid`); the context holds each one's index among the rules'
+  // texts, as when slicing (resolve_texts).
+  std::map<schema::FieldId, std::string> texts;
 
   ExplainAt() = default;
   ExplainAt(const ExplainAt&) = delete;
@@ -36,5 +39,11 @@ std::string field_text(schema::FieldId field, double value);
 
 // Parses `at` (comma-separated `name=value`) into `out`. Errors name the item and say what to write.
 Status parse_explain_at(const std::string& at, ExplainAt& out);
+
+// Sets each name field of `at` to its text's index among `rules`' texts (-1: none compares with it).
+template <class Rules>
+void resolve_texts(ExplainAt& at, const Rules& rules) {
+  for (const auto& [f, text] : at.texts) at.context.set(f, rules.text_index(text));
+}
 
 }  // namespace tranche::compiler

@@ -168,7 +168,7 @@ class Generator {
   uint16_t string(const std::string& s) {
     auto [it, fresh] = strings_.try_emplace(s, static_cast<uint16_t>(p_.strings.size()));
     if (fresh) {
-      if (p_.strings.size() >= vm::kMaxStrings) throw CodegenLimit{"more than 65536 distinct template texts"};
+      if (p_.strings.size() >= vm::kMaxStrings) throw CodegenLimit{"more than 65536 distinct texts (templates and names)"};
       p_.strings.push_back(s);
     }
     return it->second;

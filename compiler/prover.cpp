@@ -309,6 +309,11 @@ int Space::field(schema::FieldId f) {
       v.full = n >= 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1;
       break;
     }
+    case schema::Type::Text:  // compared with quoted text only: each comparison is an atom
+      v.kind = VarKind::Integer;
+      v.lo = -1;
+      v.hi = 65535;
+      break;
   }
   return add(fmt::format("field:{}", info.name), v);
 }
@@ -331,6 +336,9 @@ int Space::property(schema::PropId p) {
       v.full = n >= 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1;
       break;
     }
+    case schema::Type::Text:  // no property is a name
+      v.kind = VarKind::Integer;
+      break;
   }
   return add(fmt::format("prop:{}", info.name), v);
 }

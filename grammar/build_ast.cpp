@@ -220,6 +220,7 @@ antlrcpp::Any AstBuilder::visitBoolLit(RulesParser::BoolLitContext* ctx) {
 antlrcpp::Any AstBuilder::visitStringLit(RulesParser::StringLitContext* ctx) {
   auto e = make(ExprKind::String, ctx);
   e->text = ctx->text->getText();
+  e->str = string_value(ctx->text);
   return give(std::move(e));
 }
 

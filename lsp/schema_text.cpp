@@ -13,6 +13,8 @@ std::string type_text(schema::Type type, schema::Unit unit, schema::EnumType e) 
     case schema::Type::Enum:
       return fmt::format("`{}` (one of: {})", schema::enum_info(e).name,
                          fmt::join(schema::enum_info(e).values, ", "));
+    case schema::Type::Text:
+      return "name (compared with quoted text: `== \"lid\"`)";
     case schema::Type::Number:
       break;
   }

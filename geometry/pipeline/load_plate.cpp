@@ -57,6 +57,26 @@ geo::Mesh linear_mesh(const plate::Object& o) {
   return plate::world_mesh(lin);
 }
 
+// The plate was placed on `placed` (decide_bed); the print stage must give the same bed.
+Status same_bed(const plate::Bed& placed, const ctx::PropertyValues& print) {
+  const plate::Bed now = bed_of(print);
+  const std::pair<const char*, std::pair<double, double>> all[] = {
+      {"bed_shape", {static_cast<double>(placed.shape), static_cast<double>(now.shape)}},
+      {"bed_size_x", {placed.size_x_mm, now.size_x_mm}},
+      {"bed_size_y", {placed.size_y_mm, now.size_y_mm}},
+      {"bed_origin_x", {placed.origin_x_mm, now.origin_x_mm}},
+      {"bed_origin_y", {placed.origin_y_mm, now.origin_y_mm}},
+      {"max_print_height", {placed.max_height_mm, now.max_height_mm}}};
+  for (const auto& [name, v] : all)
+    if (v.first != v.second)
+      return Error{"rules", fmt::format("{} is {:g} for an empty plate but {:g} for this one: a rule makes the bed "
+                                        "depend on the plate (print.height, print.size_x/y, print.volume or "
+                                        "object.count), but the plate is placed on the bed before those are "
+                                        "measured; decide the bed without reading them",
+                                        name, v.first, v.second)};
+  return ok_status();
+}
+
 void move_island(geo::Island& island, const geo::Point& by) {
   auto move = [&](geo::Ring& r) {
     for (auto& p : r) p = geo::Point(p.X + by.X, p.Y + by.Y);
@@ -74,6 +94,27 @@ Result<PrintStage> decide_print(const ctx::Cascade& cascade, const setup::PrintF
   if (!props) return props.error();
   p.props = std::move(*props);
   return p;
+}
+
+plate::Bed bed_of(const ctx::PropertyValues& P) {
+  plate::Bed bed;
+  bed.shape = P[schema::PropId::BedShape] == static_cast<double>(schema::BedShape::Circular) ? plate::Bed::Shape::Circle
+                                                                                            : plate::Bed::Shape::Rectangle;
+  bed.size_x_mm = P[schema::PropId::BedSizeX];
+  bed.size_y_mm = bed.shape == plate::Bed::Shape::Circle ? bed.size_x_mm : P[schema::PropId::BedSizeY];
+  bed.origin_x_mm = P[schema::PropId::BedOriginX];
+  bed.origin_y_mm = P[schema::PropId::BedOriginY];
+  bed.max_height_mm = P[schema::PropId::MaxPrintHeight];
+  // The skirt's reach round the objects: its distance and loops (a loop at most 1.5 nozzles wide).
+  if (P[schema::PropId::SkirtLoops] > 0)
+    bed.margin_mm = P[schema::PropId::SkirtDistance] + P[schema::PropId::SkirtLoops] * 1.5 * P[schema::PropId::NozzleDiameter];
+  return bed;
+}
+
+Result<plate::Bed> decide_bed(const ctx::Cascade& cascade) {
+  auto print = decide_print(cascade, setup::PrintFacts{});
+  if (!print) return print.error();
+  return bed_of(print->props);
 }
 
 // Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
@@ -127,11 +168,16 @@ Result<SlicedPlate> slice_plate(const plate::Plate& plate, const ctx::Cascade& c
   }
   out.facts.placed = true;
   out.facts.shift = parts[0].shift;
-  for (const plate::Object& o : plate.objects) out.facts.objects.push_back(plate::display_name(o));
+  for (const plate::Object& o : plate.objects) {
+    out.facts.objects.push_back(plate::display_name(o));
+    out.facts.names.push_back(o.name);
+  }
   progress.finish(fmt::format("{} triangles", out.triangles));
   auto print = decide_print(cascade, out.facts);
   if (!print) return print.error();
   out.print = std::move(*print);
+  if (plate.bed)
+    if (Status s = same_bed(*plate.bed, out.print.props); !s) return s.error();
   auto planned = plan_heights(cascade, out.print, out.facts.height,
                               plate.objects.size() == 1 ? plate.objects[0].file : std::string("the plate"));
   if (!planned) return planned.error();

@@ -25,6 +25,17 @@ struct PrintStage {
 };
 Result<PrintStage> decide_print(const ctx::Cascade& cascade, const setup::PrintFacts& facts);
 
+// The bed a print stage gives: bed_shape, bed_size_x/y, bed_origin_x/y, max_print_height.
+plate::Bed bed_of(const ctx::PropertyValues& print);
+
+// The bed before there is a plate. Placing the objects (arranging, --scale-to-fit, --center,
+// the bed check) needs the bed, and the print stage's fields (print.height, print.size_x/y,
+// print.volume, object.count) are measured on the placed plate: so the bed is decided first,
+// from the print stage of an empty plate (those fields read 0). slice_plate's print stage, the
+// one every later stage reads, must give the same bed (a rule that makes the bed depend on the
+// plate is refused), so both decisions agree.
+Result<plate::Bed> decide_bed(const ctx::Cascade& cascade);
+
 // Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
 Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
                                              const std::string& model);

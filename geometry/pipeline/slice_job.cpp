@@ -77,6 +77,7 @@ Result<SlicedPlate> load_svg(const SliceOptions& o, const ctx::Cascade& cascade,
   if (!model) return model.error();
   SlicedPlate out;
   out.facts.objects = {o.model};
+  out.facts.names = {std::filesystem::path(o.model).stem().string()};
   if (model->layer_stack) {
     if (o.svg_layers > 0 || o.svg_height_mm > 0)
       report.warn("svg-stack-height", o.model,
@@ -203,6 +204,7 @@ Status print_sequential(SlicedPlate& in, const setup::PrintSetup& all, LayerOutp
     if (!one) return one.error();
     (*one)->provenance = all.provenance;
     (*one)->allow_off_bed = all.allow_off_bed;
+    (*one)->object_texts = all.object_texts;
     (*one)->skirt_around = k == 0 ? all.skirt_around : geo::Rings{};  // one skirt, round every object
     std::unique_ptr<geo::ScriptAngles> angles;
     if (script) {
@@ -216,6 +218,23 @@ Status print_sequential(SlicedPlate& in, const setup::PrintSetup& all, LayerOutp
     printed_top = std::max(printed_top, pass.top_mm);
   }
   return ok_status();
+}
+
+// object.name of each object: its name's index among the rules' texts. A text the rules compare
+// names with that no object has is most likely a typo: a warning lists the names there are.
+void name_objects(setup::PrintSetup& setup, const setup::PrintFacts& facts, const vm::RuleSet* rules, Report& report) {
+  for (const std::string& name : facts.names) setup.object_texts.push_back(rules ? rules->text_index(name) : -1);
+  if (!rules) return;
+  for (const auto& [text, where] : rules->compared_texts()) {
+    if (std::find(facts.names.begin(), facts.names.end(), text) != facts.names.end()) continue;
+    std::string names;
+    for (size_t i = 0; i < facts.names.size() && i < 12; ++i)
+      if (names.find(fmt::format("'{}'", facts.names[i])) == std::string::npos)
+        names += fmt::format("{}'{}'", names.empty() ? "" : ", ", facts.names[i]);
+    report.warn("object-name", where.empty() ? "rules" : where,
+                fmt::format("the rules compare object.name with \"{}\", but no object has that name (the names: {})",
+                            text, names));
+  }
 }
 
 // The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
@@ -233,6 +252,7 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
   auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
   if (!setup) return setup.error();
   (*setup)->allow_off_bed = options.allow_off_bed;
+  name_objects(**setup, in.facts, rules, report);
   std::unique_ptr<geo::ScriptAngles> angles;
   if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
     progress.start("fill angles");

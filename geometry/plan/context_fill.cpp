@@ -41,6 +41,7 @@ void set_island_fields(ctx::Context& c, const IslandPlan& i) {
   c.set(FieldId::IslandConvex, i.convex ? 1 : 0);
   c.set(FieldId::IslandBelowArea, i.below_area);
   c.set(FieldId::IslandBelowSupported, i.below_supported);
+  c.set(FieldId::ObjectName, i.object_text);
 }
 
 void set_cell_fields(ctx::Context& c, const CellPlan& cell) {
@@ -139,6 +140,8 @@ void IslandsView::bind(ctx::Context& c, const std::vector<IslandPlan>& list) {
         return isl.below_area;
       case FieldId::IslandBelowSupported:
         return isl.below_supported;
+      case FieldId::ObjectName:
+        return static_cast<double>(isl.object_text);
       default:
         return 0.0;
     }

@@ -101,6 +101,8 @@ Status LayerTask::layer_level() {
 Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip) {
   ip.index = index;
   ip.object = src.object;
+  const auto k = static_cast<size_t>(src.object);
+  ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
   ip.shape.push_back(src.shape.outer);
   for (const auto& h : src.shape.holes) ip.shape.push_back(h);
   if (Status s = redecide_island(ip); !s) return s;

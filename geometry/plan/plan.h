@@ -102,6 +102,7 @@ struct CellPlan {
 struct IslandPlan {
   int index = 0;
   int object = 0;    // the plate's object it belongs to
+  int object_text = -1;  // object.name: the index of its object's name among the rules' texts, or -1
   geo::Rings shape;  // outline and holes after any replacer offset
   // island.* fields, in the units of fields.def (mm, mm², ratio)
   double area = 0, border_length = 0;

@@ -154,7 +154,13 @@ Arrangement arrange(const std::vector<ArrangeItem>& items, const Bed& bed, doubl
   out.moves.assign(items.size(), Vec2::Zero());
   std::vector<Convex> hulls(items.size());
   for (size_t i = 0; i < items.size(); ++i) hulls[i] = circumscribe(items[i].hull, kMaxVertices);
-  Arranger a(bed, spacing_mm);
+  // Arranged objects keep the margin from the edges (the skirt round them stays on the bed).
+  Bed inner = bed;
+  if (bed.margin_mm > 0 && bed.size_x_mm > 2 * bed.margin_mm && bed.size_y_mm > 2 * bed.margin_mm) {
+    inner.origin_x_mm += bed.margin_mm, inner.origin_y_mm += bed.margin_mm;
+    inner.size_x_mm -= 2 * bed.margin_mm, inner.size_y_mm -= 2 * bed.margin_mm;
+  }
+  Arranger a(inner, spacing_mm);
   bool any_fixed = false;
   for (size_t i = 0; i < items.size(); ++i) {
     if (!items[i].fixed) continue;

@@ -7,7 +7,8 @@
 // by the spacing) and stays on the bed: the no-fit polygons of convex hulls are convex (one
 // Minkowski sum each), and the best position lies on a vertex of one of them, of the bed's
 // inner-fit polygon, or where two of their edges cross: those are the candidates tried.
-// Without fixed objects, the finished pile is centred on the bed.
+// Without fixed objects, the finished pile is centred on the bed. Arranged objects keep the bed's
+// margin (the skirt's reach) from its edges.
 #pragma once
 
 #include <cstddef>

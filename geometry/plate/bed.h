@@ -16,6 +16,9 @@ struct Bed {
   double size_x_mm = 200, size_y_mm = 200;  // the rectangle, or the circle's bounding square
   double origin_x_mm = 0, origin_y_mm = 0;  // bed coordinates of that rectangle's front-left corner
   double max_height_mm = 0;                 // highest printable z; 0: not known, not checked
+  // How far the print reaches round the objects (the skirt): the arrangement keeps objects this
+  // far from the edges, so that what it arranges prints on the bed. 0: right up to the edges.
+  double margin_mm = 0;
 
   Vec2 min() const { return {origin_x_mm, origin_y_mm}; }
   Vec2 max() const { return {origin_x_mm + size_x_mm, origin_y_mm + size_y_mm}; }

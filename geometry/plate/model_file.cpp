@@ -1,5 +1,7 @@
 #include "geometry/plate/model_file.h"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <new>
 
@@ -12,6 +14,26 @@
 namespace tranche::plate {
 namespace {
 
+// What the first bytes of a file look like, for a message: "text starting with '...'" or "bytes 00 1f ...".
+std::string first_bytes(std::string_view bytes) {
+  const std::string_view head = bytes.substr(0, 24);
+  bool text = true;
+  for (unsigned char c : head) text = text && (c >= 0x20 || c == '\n' || c == '\r' || c == '\t') && c < 0x7f;
+  if (text) {
+    std::string shown(head.substr(0, head.find_first_of("\r\n")));
+    return fmt::format("text starting with '{}'", shown);
+  }
+  std::string hex;
+  for (unsigned char c : head.substr(0, 8)) hex += fmt::format("{}{:02x}", hex.empty() ? "" : " ", c);
+  return "bytes " + hex;
+}
+
+std::string extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 Result<std::vector<Object>> parse(std::string_view bytes, const std::string& path, Report& report) {
   const Detected d = detect_format(bytes);
   switch (d.format) {
@@ -22,6 +44,11 @@ Result<std::vector<Object>> parse(std::string_view bytes, const std::string& pat
     case Format::Other: return Error{path, "this is " + d.what};
     case Format::Stl: break;
   }
+  // Bytes no format claims, in a file named for one we read: say so in that format's words.
+  if (!d.sure && extension(path) == ".3mf")
+    return Error{path, fmt::format("not a 3MF file: a 3MF file is a ZIP archive, and this is {}; export the model "
+                                   "again, or give the file it was meant to be",
+                                   first_bytes(bytes))};
   auto mesh = geo::parse_stl(bytes, path, report);
   if (!mesh) return mesh.error();
   Object o;

@@ -3,12 +3,14 @@
 // object the transform its file gives; the plate's transforms and the arrangement compose onto it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "geometry/mesh/mesh.h"
+#include "geometry/plate/bed.h"
 
 namespace tranche::plate {
 
@@ -23,6 +25,7 @@ struct Object {
 
 struct Plate {
   std::vector<Object> objects;
+  std::optional<Bed> bed;  // the bed it was placed and checked on (build_plate), if any
 };
 
 // "lid", or "lid (copy 2)" for copies: how messages name an object.

@@ -62,10 +62,11 @@ void scale_to_fit(Object& o, const Bed& bed, Report& report) {
   report.warn("plate-scaled", display_name(o), fmt::format("scaled by {:.3g} to fit the bed (--scale-to-fit)", f));
 }
 
-// A file that gives a position (3MF) is told when its object had to move up or down to the bed.
+// An object whose file puts it below the bed or above it (any format: an STL's or OBJ's own
+// coordinates, a 3MF build item's transform) is told that it moved up or down to the bed.
 void note_height(const Object& o, Report& report) {
   const double up = -world_bbox(o).min.z;
-  if (!o.placed || std::fabs(up) < kNoticeMm) return;
+  if (std::fabs(up) < kNoticeMm) return;
   if (up > 0)
     report.warn("plate-lifted", display_name(o),
                 fmt::format("reached {:.2f} mm below the bed: lifted onto it (objects are not cut at the bed)", up));
@@ -160,6 +161,7 @@ Result<Plate> build_plate(const PlateOptions& options, const Bed& bed, Report& r
   if (Status s = apply_transforms(*plate, options, bed, report); !s) return s.error();
   if (Status s = place_objects(*plate, options, bed); !s) return s.error();
   if (Status s = check_plate(*plate, bed, options.allow_off_bed, report); !s) return s.error();
+  plate->bed = bed;
   return plate;
 }
 

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "geometry/mesh/weld.h"
+#include "geometry/plate/threemf_meshes.h"
 #include "geometry/plate/threemf_package.h"
 
 namespace tranche::plate {
@@ -97,8 +98,10 @@ double unit_mm(DWORD unit) {
 // The triangles of one object, its components flattened, as float corners in object mm.
 class Collector {
  public:
-  Collector(const std::string& file, const threemf::Package& pkg, Report& report)
-      : file_(file), pkg_(pkg), report_(report) {}
+  // `meshes`: the meshes the scanner read, by object id (their objects hold placeholders).
+  Collector(const std::string& file, const threemf::Package& pkg, const std::map<uint32_t, threemf::MeshData>& meshes,
+            Report& report)
+      : file_(file), pkg_(pkg), meshes_(meshes), report_(report) {}
 
   Status collect(PLib3MFBase* obj, const Eigen::Affine3d& to_object, int depth) {
     if (depth > kMaxDepth) return Error{file_, "components are nested too deeply (a component refers to itself?)"};
@@ -144,19 +147,37 @@ class Collector {
       return Error{file_, lib3mf_message(obj)};
     DWORD id = 0;
     lib3mf_resource_getresourceid(obj, &id);
-    const std::vector<bool> keep = kept_triangles(id, nt, utf8(obj, lib3mf_object_getnameutf8));
+    const std::string name = utf8(obj, lib3mf_object_getnameutf8);
+    // A placeholder stands for a mesh the scanner read (threemf_meshes.h).
+    if (nv == 3 && nt == 1)
+      if (auto mark = threemf::placeholder_id(v[0].m_fPosition, v[1].m_fPosition, v[2].m_fPosition))
+        if (auto it = meshes_.find(*mark); it != meshes_.end()) {
+          const threemf::MeshData& d = it->second;
+          const size_t n = d.triangles.size() / 3;
+          return add(d.vertices.size() / 3, n, kept_triangles(id, n, name), t,
+                     [&](size_t i) { return &d.vertices[3 * i]; }, [&](size_t i) { return &d.triangles[3 * i]; });
+        }
+    return add(nv, nt, kept_triangles(id, nt, name), t, [&](size_t i) { return v[i].m_fPosition; },
+               [&](size_t i) { return tri[i].m_nIndices; });
+  }
+
+  // The triangles of a mesh of `nv` vertices (vertex(i): x, y, z) and `nt` triangles (triangle(i):
+  // three vertex indices), those `keep` keeps, through `t` into corners.
+  template <class Vertex, class Triangle>
+  Status add(size_t nv, size_t nt, const std::vector<bool>& keep, const Eigen::Affine3d& t, Vertex vertex,
+             Triangle triangle) {
     const bool mirror = t.linear().determinant() < 0;
-    corners_.reserve(corners_.size() + 9 * size_t{nt});
-    for (DWORD i = 0; i < nt; ++i) {
+    corners_.reserve(corners_.size() + 9 * nt);
+    for (size_t i = 0; i < nt; ++i) {
       if (!keep.empty() && !keep[i]) continue;
-      const DWORD* idx = tri[i].m_nIndices;
+      const auto* idx = triangle(i);
       for (int k = 0; k < 3; ++k)
         if (idx[k] >= nv)
-          return Error{file_, fmt::format("triangle {} refers to vertex {}, but the object has {} vertices; the file "
-                                          "is damaged — export it again",
+          return Error{file_, fmt::format("triangle {} refers to vertex {}, but the object has {} vertices (an index "
+                                          "out of range); the file is damaged — export it again",
                                           i + 1, idx[k], nv)};
       for (int k : {0, mirror ? 2 : 1, mirror ? 1 : 2}) {
-        const float* p = v[idx[k]].m_fPosition;
+        const float* p = vertex(idx[k]);
         const Eigen::Vector3d q = t * Eigen::Vector3d(p[0], p[1], p[2]);
         for (int d = 0; d < 3; ++d) corners_.push_back(static_cast<float>(q[d]));
       }
@@ -165,7 +186,7 @@ class Collector {
   }
 
   // PrusaSlicer keeps modifiers and negative volumes as triangle ranges of the object's mesh.
-  std::vector<bool> kept_triangles(DWORD id, DWORD nt, const std::string& name) {
+  std::vector<bool> kept_triangles(DWORD id, size_t nt, const std::string& name) {
     const auto it = pkg_.prusa.find(id);
     if (it == pkg_.prusa.end() || it->second.volumes.empty()) return {};
     const threemf::PrusaObject& po = it->second;
@@ -195,6 +216,7 @@ class Collector {
 
   const std::string& file_;
   const threemf::Package& pkg_;
+  const std::map<uint32_t, threemf::MeshData>& meshes_;
   Report& report_;
   std::vector<float> corners_;
 };
@@ -216,8 +238,9 @@ void forward_warnings(PLib3MFBase* reader, const std::string& file, Report& repo
 // The build items of a model read by lib3mf, one object each.
 class Build {
  public:
-  Build(const std::string& file, const threemf::Package& pkg, double mm, Report& report)
-      : file_(file), pkg_(pkg), to_mm_(Eigen::Scaling(mm)), report_(report),
+  Build(const std::string& file, const threemf::Package& pkg, const std::map<uint32_t, threemf::MeshData>& meshes,
+        double mm, Report& report)
+      : file_(file), pkg_(pkg), meshes_(meshes), to_mm_(Eigen::Scaling(mm)), report_(report),
         stem_(std::filesystem::path(file).stem().string()) {}
 
   // Adds build item `number` (from 1); items that are no model, or empty, are left out with a warning.
@@ -257,7 +280,7 @@ class Build {
     if (auto it = first_.find(id); it != first_.end()) {
       o.mesh = objects_[it->second].mesh;
     } else {
-      Collector c(file_, pkg_, report_);
+      Collector c(file_, pkg_, meshes_, report_);
       if (Status s = c.collect(obj.get(), to_mm_, 0); !s) return s;
       if (c.corners().empty()) {
         report_.warn("3mf-empty", where, "the object has no triangles to print: left out");
@@ -278,6 +301,7 @@ class Build {
  private:
   const std::string& file_;
   const threemf::Package& pkg_;
+  const std::map<uint32_t, threemf::MeshData>& meshes_;
   const Eigen::Affine3d to_mm_;
   Report& report_;
   const std::string stem_;
@@ -291,7 +315,11 @@ class Build {
 Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string& file, Report& report) {
   auto pkg = threemf::inspect_package(bytes, file, report);
   if (!pkg) return pkg.error();
-  const std::string_view input = pkg->repacked.empty() ? bytes : std::string_view(pkg->repacked);
+  const std::string_view whole = pkg->repacked.empty() ? bytes : std::string_view(pkg->repacked);
+  // The plain meshes are read here, the rest by lib3mf from the package without them.
+  threemf::SplitModel split;
+  std::string light = threemf::without_meshes(whole, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file, split);
+  const std::string_view input = light.empty() ? whole : std::string_view(light);
   Handle model, reader;
   if (lib3mf_createmodel(model.out()) != LIB3MF_OK ||
       lib3mf_model_queryreader(model.get(), MODELREADERCLASS_3MF, reader.out()) != LIB3MF_OK)
@@ -304,7 +332,7 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
   lib3mf_model_getunit(model.get(), &unit);
   Handle items;
   if (lib3mf_model_getbuilditems(model.get(), items.out()) != LIB3MF_OK) return read_error(file, model.get());
-  Build build(file, *pkg, unit_mm(unit), report);
+  Build build(file, *pkg, split.meshes, unit_mm(unit), report);
   BOOL has = false;
   int number = 0;
   while (lib3mf_builditemiterator_movenext(items.get(), &has) == LIB3MF_OK && has) {
@@ -314,7 +342,7 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
     if (Status s = build.add(item.get(), ++number); !s) return s.error();
   }
   if (build.objects().empty() && number == 0)
-    if (Status s = threemf::check_model_xml(input, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file); !s)
+    if (Status s = threemf::check_model_xml(whole, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file); !s)
       return s.error();
   if (build.objects().empty())
     return Error{file, number == 0 ? "the 3MF has no build items: nothing to print"

@@ -348,6 +348,31 @@ Result<Package> inspect_package(std::string_view bytes, const std::string& file,
   return pkg;
 }
 
+std::string without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
+                           SplitModel& split) {
+  auto zip = ZipArchive::open(bytes, file);
+  const ZipEntry* model = zip ? zip->find(root) : nullptr;
+  if (!model) return {};
+  auto xml = zip->read(*model, kPartLimit);
+  if (!xml) return {};
+  split = split_meshes(*xml);
+  if (split.meshes.empty()) return {};
+  std::vector<std::pair<std::string, std::string>> parts;
+  for (const ZipEntry& e : zip->entries()) {
+    if (&e == model) {
+      parts.emplace_back(e.name, std::move(split.model));
+      continue;
+    }
+    auto part = zip->read(e, kPartLimit);
+    if (!part) {
+      split = SplitModel{};
+      return {};
+    }
+    parts.emplace_back(e.name, std::move(*part));
+  }
+  return write_stored_zip(parts);
+}
+
 Status check_model_xml(std::string_view bytes, const std::string& root, const std::string& file) {
   auto zip = ZipArchive::open(bytes, file);
   if (!zip) return zip.error();

@@ -16,6 +16,7 @@
 
 #include "base/report.h"
 #include "base/result.h"
+#include "geometry/plate/threemf_meshes.h"
 
 namespace tranche::plate::threemf {
 
@@ -42,6 +43,12 @@ struct Package {
 // Reads the package's directory and the slicers' extra parts; `file` names it in messages.
 // Errors: not a ZIP archive, a ZIP archive that holds no 3D model, broken parts we must read.
 Result<Package> inspect_package(std::string_view bytes, const std::string& file, Report& report);
+
+// The package `bytes` with the plain meshes of its model part `root` read into `split` and
+// replaced by placeholders (threemf_meshes.h), every part stored uncompressed, for lib3mf; empty
+// (and `split` empty) when there is no plain mesh, or anything stands in the way: then lib3mf
+// reads `bytes` as it is.
+std::string without_meshes(std::string_view bytes, const std::string& root, const std::string& file, SplitModel& split);
 
 // Why the model part `root` of the package `bytes` is not well-formed XML, or ok. lib3mf 1.8 reads
 // a model cut short without complaint; when it finds nothing to print, this says why.

@@ -28,7 +28,8 @@ struct PrintFacts {
   // coordinates; else it is centred on the bed.
   bool placed = false;
   geo::Point shift;
-  std::vector<std::string> objects;  // each object's name, by Island::object
+  std::vector<std::string> objects;  // how messages name each object ("lid (copy 2)"), by Island::object
+  std::vector<std::string> names;    // each object's own name, copies' too ("lid"), by Island::object
 };
 
 // The print context: the print fields (print.height, print.size_x/y, print.volume) of `facts`.
@@ -57,6 +58,9 @@ struct PrintSetup {
   ctx::PropertyValues hook_props;
   schema::Flavor flavor = schema::Flavor::Marlin;
   std::vector<std::string> objects;  // object names, by Island::object
+  // object.name of each object, by Island::object: the index of its name among the rules' texts
+  // (vm::RuleSet::text_index), -1 when no rule names it. Set by the caller that has the rules.
+  std::vector<int> object_texts;
   // Record who decided what for every element (--export-preview); off, deciding records nothing.
   bool provenance = false;
   // The bed in G-code coordinates (mm), from the print stage: every move of every layer must

@@ -61,6 +61,8 @@ std::string type_name(const Type& t) {
       return "bool";
     case Kind::Enum:
       return std::string(schema::enum_info(t.enum_type).name);
+    case Kind::Text:
+      return "text";
   }
   return "?";
 }

@@ -51,7 +51,7 @@ namespace tranche::ast {
 enum class ExprKind : uint8_t {
   Number,       // number: value (scaled by the unit spelling), unit_text as written
   Bool,         // boolean
-  String,       // text: only valid in gcode/comment (reported by the checker elsewhere)
+  String,       // text: the raw token, str: its value; compared with a name field (`object.name == "lid"`)
   Name,         // text: a bare identifier (`speed`, `infill`, `x`)
   Member,       // text.member: `layer.index`, `below.area`, `p.x`
   LayerAccess,  // text[args[0]].member: `layers[layer.index - 2].area`
@@ -85,6 +85,7 @@ struct Expr {
   Span unit_span;
   bool boolean = false;
   std::string text;    // Name/Call/Member/LayerAccess: the first name; String: the raw token
+  std::string str;     // String: the value, quotes removed and escapes resolved
   Span text_span;      // the first name; Unary/Binary/InRange/InSet: the operator
   std::string member;  // Member/LayerAccess: the name after `.`
   Span member_span;

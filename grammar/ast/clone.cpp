@@ -23,6 +23,7 @@ ExprPtr copy(const Expr* e, const Relocation& to) {
   out->unit_span = to(e->unit_span);
   out->boolean = e->boolean;
   out->text = e->text;
+  out->str = e->str;
   out->text_span = to(e->text_span);
   out->member = e->member;
   out->member_span = to(e->member_span);

@@ -118,6 +118,8 @@ Type Type::of(schema::Type t, schema::Unit u, schema::EnumType e) {
       return boolean();
     case schema::Type::Enum:
       return enumeration(e);
+    case schema::Type::Text:
+      return text();
   }
   return error();
 }
@@ -134,6 +136,8 @@ std::string Type::describe() const {
       return "a boolean";
     case Kind::Enum:
       return fmt::format("a `{}` value", schema::enum_info(enum_type).name);
+    case Kind::Text:
+      return "a name";
   }
   return "?";
 }

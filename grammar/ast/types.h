@@ -49,6 +49,7 @@ enum class Kind : uint8_t {
   Number,
   Bool,
   Enum,
+  Text,   // a name (object.name): compared with quoted text only, never computed with
 };
 
 struct Type {
@@ -61,6 +62,7 @@ struct Type {
   static Type number(Unit u = {}) { return {Kind::Number, u, schema::EnumType::None}; }
   static Type boolean() { return {Kind::Bool, {}, schema::EnumType::None}; }
   static Type enumeration(schema::EnumType e) { return {Kind::Enum, {}, e}; }
+  static Type text() { return {Kind::Text, {}, schema::EnumType::None}; }
   static Type of(schema::Type t, schema::Unit u, schema::EnumType e);
 
   bool is_error() const { return kind == Kind::Error; }

@@ -178,6 +178,8 @@ Result<double> parse_field_value(std::string_view name, std::string_view value) 
     if (value == "false") return 0.0;
     return Error{std::string(name), fmt::format("{} is true or false, not '{}'", name, value)};
   }
+  if (info.type == Type::Text)  // its number is the text's index in a rule program (vm::RuleSet::text_index)
+    return Error{std::string(name), fmt::format("{} is a name: its value depends on the rules that compare it", name)};
   if (info.type == Type::Enum) {
     if (auto v = schema::find_enum_value(info.enum_type, value)) return static_cast<double>(*v);
     return Error{std::string(name), fmt::format("{} is one of {}, not '{}'", name, enum_list(info.enum_type), value)};

@@ -38,7 +38,10 @@ inline constexpr int kStageCount = 9;
 
 // Value types. At run time every scalar is stored as a double (ints, bools and enum values
 // are exactly representable), so the VM reads any field with one load and no boxing.
-enum class Type : uint8_t { Number, Int, Bool, Enum };
+// Text (a name: object.name) is stored as the index of the same text in the rule program's
+// string table, or -1 when no rule names it: rules compare it with quoted text only (the
+// compiler interns the text; see docs/language.md, "Names").
+enum class Type : uint8_t { Number, Int, Bool, Enum, Text };
 
 // Units, as written in rules. Percent is not a unit of its own: `50%` is the plain number 0.5.
 enum class Unit : uint8_t {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <functional>
+#include <map>
 
 #include "runtime/vm/verify.h"
 
@@ -10,12 +11,15 @@ namespace tranche::vm {
 
 namespace {
 
-void remap(Instr& in, uint32_t consts, uint32_t strings, uint32_t rules) {
+// Moves an instruction's operands to the linked program: constants and rules by the counts
+// before it, strings through `strings` (each text once in the linked program).
+void remap(Instr& in, uint32_t consts, const std::vector<uint16_t>& strings, uint32_t rules) {
   const OpInfo& info = op_info(in.code());
   auto fix = [&](Operand k, auto& v) {
-    if (k == Operand::Const) v = static_cast<std::remove_reference_t<decltype(v)>>(v + consts);
-    else if (k == Operand::String) v = static_cast<std::remove_reference_t<decltype(v)>>(v + strings);
-    else if (k == Operand::Rule) v = static_cast<std::remove_reference_t<decltype(v)>>(v + rules);
+    using V = std::remove_reference_t<decltype(v)>;
+    if (k == Operand::Const) v = static_cast<V>(v + consts);
+    else if (k == Operand::String && v < strings.size()) v = static_cast<V>(strings[v]);
+    else if (k == Operand::Rule) v = static_cast<V>(v + rules);
   };
   fix(info.b, in.b);
   fix(info.c, in.c);
@@ -109,20 +113,27 @@ Result<Program> link(std::vector<Program> programs, const std::vector<std::strin
   if (programs.size() == 1) return std::move(programs[0]);
   Program out;
   out.debug.files.clear();
+  std::map<std::string, uint16_t, std::less<>> texts;  // each text once: a name's index is its text's
   for (size_t i = 0; i < programs.size(); ++i) {
     Program& p = programs[i];
     const std::string name = i < names.size() ? names[i] : fmt::format("rule set {}", i + 1);
     const auto consts = static_cast<uint32_t>(out.consts.size());
-    const auto strings = static_cast<uint32_t>(out.strings.size());
     const auto rules = static_cast<uint32_t>(out.rules.size());
     const auto chunks = static_cast<uint32_t>(out.chunks.size());
     const auto conjuncts = static_cast<uint32_t>(out.conjuncts.size());
     const auto code = static_cast<uint32_t>(out.code.size());
     if (consts + p.consts.size() > kMaxConsts) return Error{name, "the rule sets together have more than 65536 constants"};
-    if (strings + p.strings.size() > kMaxStrings) return Error{name, "the rule sets together have more than 65536 texts"};
     if (rules + p.rules.size() > kMaxRules) return Error{name, "the rule sets together have more than 65535 rules"};
     out.consts.insert(out.consts.end(), p.consts.begin(), p.consts.end());
-    out.strings.insert(out.strings.end(), p.strings.begin(), p.strings.end());
+    std::vector<uint16_t> strings(p.strings.size());
+    for (size_t k = 0; k < p.strings.size(); ++k) {
+      auto [it, fresh] = texts.try_emplace(p.strings[k], static_cast<uint16_t>(out.strings.size()));
+      if (fresh) {
+        if (out.strings.size() >= kMaxStrings) return Error{name, "the rule sets together have more than 65536 texts"};
+        out.strings.push_back(p.strings[k]);
+      }
+      strings[k] = it->second;
+    }
     for (Instr in : p.code) {
       remap(in, consts, strings, rules);
       out.code.push_back(in);

@@ -2,7 +2,8 @@
 // what `tranche slice --rules a.rules --rules b.bundle --set k=v` runs. Rules keep their order,
 // so later programs win slot by slot exactly as if their rules had been written after the
 // earlier ones. A program without debug information gets placeholder entries naming it, so
-// that run-time errors still say which bundle a rule came from.
+// that run-time errors still say which bundle a rule came from. Texts the programs share are
+// kept once, so that a name (object.name) has one index in the linked program.
 #pragma once
 
 #include <string>

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "runtime/vm/machine.h"
@@ -215,6 +216,32 @@ std::string RuleSet::rule_name(uint32_t r) const {
     return n.starts_with('"') || std::isdigit(static_cast<unsigned char>(n[0])) ? "rule " + n : n;
   }
   return fmt::format("rule {}", r);
+}
+
+int RuleSet::text_index(std::string_view name) const {
+  const auto& s = program_.strings;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s[i] == name) return static_cast<int>(i);  // the verifier makes each text unique
+  return -1;
+}
+
+std::vector<std::pair<std::string, std::string>> RuleSet::compared_texts() const {
+  const Debug& d = program_.debug;
+  std::vector<std::optional<std::string>> where(program_.strings.size());
+  for (size_t pc = 0; pc < program_.code.size(); ++pc) {
+    const Instr& in = program_.code[pc];
+    if (in.code() != Op::LoadS || in.b >= where.size() || where[in.b]) continue;
+    std::string at;
+    if (pc < d.instr_loc.size() && d.instr_loc[pc] < d.locs.size()) {
+      const Loc& l = d.locs[d.instr_loc[pc]];
+      if (l.file < d.files.size()) at = l.line ? fmt::format("{}:{}:{}", d.files[l.file], l.line, l.col) : d.files[l.file];
+    }
+    where[in.b] = std::move(at);
+  }
+  std::vector<std::pair<std::string, std::string>> out;
+  for (size_t i = 0; i < where.size(); ++i)
+    if (where[i]) out.emplace_back(program_.strings[i], std::move(*where[i]));
+  return out;
 }
 
 std::string RuleSet::rule_where(uint32_t r) const {

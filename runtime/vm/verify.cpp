@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <string_view>
+#include <unordered_map>
 
 namespace tranche::vm {
 
@@ -36,6 +38,11 @@ class Verifier {
       if (!std::isfinite(p_.consts[i])) return fail(fmt::format("constant {}", i), "not a finite number");
     for (size_t i = 0; i < p_.strings.size(); ++i)
       if (p_.strings[i].size() > kMaxStringBytes) return fail(fmt::format("string {}", i), "longer than 1 MiB");
+    // A name matches the index of its text (RuleSet::text_index): each text is there once.
+    std::unordered_map<std::string_view, size_t> seen;
+    for (size_t i = 0; i < p_.strings.size(); ++i)
+      if (auto [it, fresh] = seen.emplace(p_.strings[i], i); !fresh)
+        return fail(fmt::format("string {}", i), fmt::format("repeats string {}", it->second));
     for (uint32_t c = 0; c < p_.chunks.size(); ++c)
       if (Status s = chunk(c); !s) return s;
     for (size_t i = 0; i < p_.conjuncts.size(); ++i) {

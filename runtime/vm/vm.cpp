@@ -267,6 +267,7 @@ bool Machine::exec(uint32_t ci, double& result) {
 #endif
 
   CASE(LoadK) r[A] = K[B]; NEXT;
+  CASE(LoadS) r[A] = B; NEXT;
   CASE(Field) r[A] = F[B]; NEXT;
   CASE(Prop) r[A] = props_->values[B]; NEXT;
   CASE(Inherit) {

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,13 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   static Result<std::shared_ptr<const RuleSet>> create(Program program);
 
   const Program& program() const { return program_; }
+  // The value a name field (object.name) takes for `name`: the index of the same text in the
+  // program's strings, which holds every quoted text the rules compare names with; -1 when no
+  // rule names it (then `object.name == "..."` is false and `!=` true for every text).
+  int text_index(std::string_view name) const;
+  // Every quoted text the rules compare a name with, in the order of the strings, with where it
+  // is first written ("file:line:col"; empty without debug information).
+  std::vector<std::pair<std::string, std::string>> compared_texts() const;
 
   // ctx::Decider
   Status decide(schema::Stage stage, const ctx::Context& ctx, ctx::PropertyValues& props) const override;

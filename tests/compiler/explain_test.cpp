@@ -163,3 +163,11 @@ rule "marker" when path.kind == top_solid { before path { gcode "M117 top" } }
   CHECK(has(top, "replace path\n  decided by rule \"wavy top\""));
   CHECK_FALSE(has(top, "lose this slot"));  // "base" decides; nothing below it
 }
+
+TEST_CASE("explain: a name given with --at is matched as the slicer matches it") {
+  const std::string rules = "rule \"lid\" when object.name == \"lid\" { infill_density = 40% }\n";
+  CHECK(explain(rules, "object.name=lid").find("infill_density = 40%\n  decided by rule \"lid\"") != std::string::npos);
+  const std::string base = explain(rules, "object.name=\"base\"");
+  CHECK(base.find("context: object.name = \"base\"") != std::string::npos);
+  CHECK(base.find("`object.name == \"lid\"` is false (object.name = \"base\")") != std::string::npos);
+}

@@ -40,6 +40,7 @@ std::string type_text(schema::Type type, schema::Unit unit, schema::EnumType e) 
     case schema::Type::Int: return "integer";
     case schema::Type::Bool: return "boolean";
     case schema::Type::Enum: return enum_name(e);
+    case schema::Type::Text: return "name";
     case schema::Type::Number: break;
   }
   if (unit == schema::Unit::Ratio) return "ratio";
@@ -53,6 +54,7 @@ std::string value_text(double v, schema::Type type, schema::Unit unit, schema::E
     case schema::Type::Bool: return v != 0 ? "true" : "false";
     case schema::Type::Enum: return std::string(schema::enum_value_name(e, static_cast<int>(v)));
     case schema::Type::Int: return number(v);
+    case schema::Type::Text: return "";
     case schema::Type::Number: break;
   }
   if (unit == schema::Unit::Ratio) return number(v * 100) + "%";

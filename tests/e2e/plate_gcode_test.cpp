@@ -6,76 +6,22 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include "apps/slice_args.h"
 #include "apps/slice_command.h"
 #include "gcode_reader.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "geometry/plate/threemf_write.h"
+#include "plate_helpers.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
+using namespace tranche::test::plate_e2e;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-struct Box {
-  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
-  void add(double x, double y) {
-    min_x = std::min(min_x, x), max_x = std::max(max_x, x), min_y = std::min(min_y, y), max_y = std::max(max_y, y);
-  }
-  double w() const { return max_x - min_x; }
-  double h() const { return max_y - min_y; }
-};
-
-// The extrusions of one layer (skirt left out), grouped into the parts that lie more than
-// `gap` mm apart: one part per object.
-std::vector<Box> parts(const test::Gcode& g, int layer, double gap = 2) {
-  std::vector<std::pair<double, double>> p;
-  for (const auto& m : g.moves)
-    if (m.layer == layer && m.has_xy && m.de > 0 && m.type != "Skirt/Brim") {
-      const int n = 1 + static_cast<int>(std::hypot(m.x - m.x0, m.y - m.y0));  // a point every mm or less
-      for (int k = 0; k <= n; ++k) p.emplace_back(m.x0 + (m.x - m.x0) * k / n, m.y0 + (m.y - m.y0) * k / n);
-    }
-  std::vector<int> group(p.size(), -1);
-  int groups = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    if (group[i] >= 0) continue;
-    std::vector<size_t> stack = {i};
-    group[i] = groups;
-    while (!stack.empty()) {
-      const size_t a = stack.back();
-      stack.pop_back();
-      for (size_t b = 0; b < p.size(); ++b)
-        if (group[b] < 0 && std::hypot(p[a].first - p[b].first, p[a].second - p[b].second) <= gap) {
-          group[b] = groups;
-          stack.push_back(b);
-        }
-    }
-    ++groups;
-  }
-  std::vector<Box> out(groups);
-  for (size_t i = 0; i < p.size(); ++i) out[group[i]].add(p[i].first, p[i].second);
-  std::sort(out.begin(), out.end(), [](const Box& a, const Box& b) { return a.min_x < b.min_x; });
-  return out;
-}
-
-pipeline::SliceOptions options(const test::TempDir& dir) {
-  pipeline::SliceOptions o;
-  o.quiet = true;
-  o.output_gcode = (dir / "plate.gcode").string();
-  return o;
-}
-
-plate::Object object(const std::string& name, geo::Mesh mesh, const Eigen::Affine3d& t) {
-  plate::Object o;
-  o.name = name;
-  o.mesh = std::move(mesh);
-  o.transform = t;
-  return o;
-}
 
 std::vector<std::string> words(const std::string& s) {
   std::vector<std::string> out;
@@ -110,10 +56,8 @@ TEST_CASE("plate e2e: two models are arranged on the bed and print apart") {
   }
   CHECK(((a.w() == doctest::Approx(30).epsilon(0.02) && b.w() == doctest::Approx(16).epsilon(0.03)) ||
          (b.w() == doctest::Approx(30).epsilon(0.02) && a.w() == doctest::Approx(16).epsilon(0.03))));
-  // The adapter's temporary file shows in the header's model line only (until the pipeline takes a plate).
-  size_t traces = 0;
-  for (const auto& line : g.lines) traces += has(line, "tranche-plate-");
-  CHECK(traces <= 1);
+  // The header names the model files.
+  CHECK(g.contains(fmt::format("; model: {} + {}\n", p.files[0], p.files[1])));
 }
 
 TEST_CASE("plate e2e: a 3MF's build items are sliced where their transforms put them") {
@@ -137,10 +81,16 @@ TEST_CASE("plate e2e: a 3MF's build items are sliced where their transforms put 
   CHECK(L.w() == doctest::Approx(20).epsilon(0.05));  // turned: 20 wide (bar and nub), 40 long in y
   CHECK(L.h() == doctest::Approx(40).epsilon(0.03));
   CHECK(cube.w() == doctest::Approx(10).epsilon(0.05));
-  // The turned L spans x 40..60 (the nub at 40..50 towards -x), y 80..120; the cube 120..130, 80..90:
-  // the pipeline centres the plate on the bed, the objects keep their places relative to each other.
-  CHECK(cube.min_x - L.min_x == doctest::Approx(80).epsilon(0.01));
-  CHECK(cube.min_y - L.min_y == doctest::Approx(0).epsilon(0.01));
+  // Each where its build item's transform puts it on the bed: the L turned about its origin at
+  // (60, 80) spans x 40..60 (the nub at 40..50 towards -x) and y 80..120; the cube x 120..130,
+  // y 80..90 (the walls' extrusions lie half a width inside the outline).
+  const double in = 0.25;
+  CHECK(L.min_x == doctest::Approx(40 + in).epsilon(0.004));
+  CHECK(L.max_x == doctest::Approx(60 - in).epsilon(0.004));
+  CHECK(L.min_y == doctest::Approx(80 + in).epsilon(0.004));
+  CHECK(L.max_y == doctest::Approx(120 - in).epsilon(0.004));
+  CHECK(cube.min_x == doctest::Approx(120 + in).epsilon(0.004));
+  CHECK(cube.max_y == doctest::Approx(90 - in).epsilon(0.004));
   // The nub: the L's extrusions in its top 10 mm reach 10 mm further towards -x than the bar below.
   const test::Gcode g = test::read_gcode((dir / "plate.gcode").string());
   double top_min_x = 1e300, low_min_x = 1e300;

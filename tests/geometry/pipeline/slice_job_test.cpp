@@ -55,7 +55,7 @@ SCENARIO("slicing a cube to SVG and JSON") {
   Report report;
   auto r = slice(o, report);
   REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
-  THEN("50 layers of 100 mm², both files written, no warning") {
+  THEN("50 layers of 100 mm², both files written, one warning: the cube floated and was dropped onto the bed") {
     CHECK(r->layers == 50);
     CHECK(r->triangles == 12);
     CHECK(r->written == std::vector<std::string>{o.export_svg, o.export_layers});
@@ -66,7 +66,8 @@ SCENARIO("slicing a cube to SVG and JSON") {
     std::string first;
     std::getline(json, first);
     CHECK(first.rfind("{\"format\": \"tranche-layers\", \"version\": 2", 0) == 0);
-    CHECK(report.empty());
+    CHECK(report.size() == 1);
+    CHECK(report.count("plate-dropped") == 1);
     CHECK(files_in(dir.path()) == 3);  // no temporary files left behind
   }
 }

@@ -126,6 +126,32 @@ TEST_CASE("arrange: what does not fit is listed, the rest still placed") {
   check_layout(items, a, bed, 6);
 }
 
+TEST_CASE("arrange: arranged objects keep the bed's margin (the skirt's reach) from its edges") {
+  Bed bed;  // 200 x 200
+  bed.margin_mm = 5;
+  // A fixed object near the front-left corner pushes the others towards the edges.
+  std::vector<ArrangeItem> items = {{rect(6, 6, 60, 60), true}};
+  for (int i = 0; i < 6; ++i) items.push_back({rect(0, 0, 50, 40), false});
+  const Arrangement a = arrange(items, bed, 6);
+  REQUIRE(a.unfit.empty());
+  for (size_t i = 1; i < items.size(); ++i) {
+    const Box2 b = bounds(moved(items[i].hull, a.moves[i]));
+    CHECK(b.min.x() >= 5 - 1e-6);
+    CHECK(b.min.y() >= 5 - 1e-6);
+    CHECK(b.max.x() <= 195 + 1e-6);
+    CHECK(b.max.y() <= 195 + 1e-6);
+  }
+  // Without the margin the same plate goes right up to an edge.
+  bed.margin_mm = 0;
+  const Arrangement edge = arrange(items, bed, 6);
+  double nearest = 1e300;
+  for (size_t i = 1; i < items.size(); ++i) {
+    const Box2 b = bounds(moved(items[i].hull, edge.moves[i]));
+    nearest = std::min({nearest, b.min.x(), b.min.y(), 200 - b.max.x(), 200 - b.max.y()});
+  }
+  CHECK(nearest < 5);
+}
+
 TEST_CASE("bed check: off the bed by how much, where, and what to do") {
   Bed bed;  // 200 × 200 at (0, 0)
   SUBCASE("larger than the bed") {

@@ -70,7 +70,8 @@ TEST_CASE("plate: one STL is centred on the bed, several are arranged apart") {
   CHECK(world_center(p.objects[0]).y() == doctest::Approx(100));
   CHECK(world_bbox(p.objects[0]).min.z == doctest::Approx(0));
   CHECK_FALSE(p.objects[0].placed);
-  CHECK(report.empty());
+  CHECK(report.size() == 1);  // it floated 3 mm above the bed in its file: dropped onto it, with a note
+  CHECK(report.count("plate-dropped") == 1);
 
   PlateOptions two;
   two.files = {f.stl("a", geo::box({30, 20, 5})), f.stl("b", geo::cylinder(10, 8, 32))};
@@ -204,4 +205,33 @@ TEST_CASE("plate: --center and --move, for one object or the plate; --no-arrange
   crowd.files = {f.stl("big", geo::box({150, 150, 5}))};
   crowd.copies = {{"", 2}};
   CHECK(has(build_error(crowd), "1 object does not fit on the 200 × 200 mm bed beside the others: 'big' (copy 2)"));
+}
+
+TEST_CASE("plate: an STL below the bed is lifted, a floating OBJ dropped, each with a warning that says so") {
+  Files f;
+  Report report;
+  PlateOptions o;
+  geo::Mesh sunk = geo::box({20, 20, 10});
+  sunk.transform(1.0, {0, 0, -4});  // modelled about its middle: 4 mm under the bed
+  const std::string obj = (f.dir / "floating.obj").string();
+  std::ofstream(obj) << "v 0 0 7\nv 10 0 7\nv 10 10 7\nv 0 10 7\nv 0 0 9\nv 10 0 9\nv 10 10 9\nv 0 10 9\n"
+                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+  o.files = {f.stl("sunk", sunk), obj, f.stl("grounded", geo::box({10, 10, 5}))};
+  Plate p = build(o, report);
+  REQUIRE(p.objects.size() == 3);
+  for (const Object& ob : p.objects) CHECK(world_bbox(ob).min.z == doctest::Approx(0));
+  CHECK(size(p.objects[0]).z() == doctest::Approx(10));  // lifted whole, not cut at the bed
+  CHECK(size(p.objects[1]).z() == doctest::Approx(2));
+  REQUIRE(report.count("plate-lifted") == 1);
+  REQUIRE(report.count("plate-dropped") == 1);
+  for (const Warning& w : report.warnings()) {
+    if (w.code == "plate-lifted") {
+      CHECK(w.where == "'sunk'");
+      CHECK(has(w.message, "reached 4.00 mm below the bed: lifted onto it"));
+    }
+    if (w.code == "plate-dropped") {
+      CHECK(w.where == "'floating'");
+      CHECK(has(w.message, "floated 7.00 mm above the bed: dropped onto it"));
+    }
+  }
 }

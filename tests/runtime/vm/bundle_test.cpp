@@ -220,3 +220,45 @@ TEST_CASE("docs/bundles.md lists every opcode with the operand kinds of opcodes.
     CHECK_MESSAGE(doc.find(row) != std::string::npos, row);
   }
 }
+
+TEST_CASE("names: quoted text is interned once, a name's field holds its index, linking keeps each text once") {
+  // Two rule sets naming the same object: linked, "lid" is one string, so one index matches both.
+  auto a = test::program("rule \"lid\" when object.name == \"lid\" { speed = 20 mm/s }\n"
+                         "rule { before print { gcode \"lid\" } }");
+  auto b = test::program("rule \"lids and caps\" when object.name in (\"cap\", \"lid\") { flow = 0.9 }");
+  CHECK(a.strings == std::vector<std::string>{"lid"});  // the template and the name share it
+  auto linked = vm::link({std::move(a), std::move(b)}, {"a.rules", "b.rules"});
+  REQUIRE(linked.ok());
+  CHECK(linked->strings == std::vector<std::string>{"lid", "cap"});
+  auto rs = vm::RuleSet::create(std::move(*linked));
+  REQUIRE(rs.ok());
+  CHECK((*rs)->text_index("lid") == 0);
+  CHECK((*rs)->text_index("cap") == 1);
+  CHECK((*rs)->text_index("base") == -1);
+  const auto texts = (*rs)->compared_texts();
+  REQUIRE(texts.size() == 2);
+  CHECK(texts[0].first == "lid");
+  CHECK(texts[1].first == "cap");
+  CHECK(texts[1].second == "test.rules:1:43");  // where "cap" is written
+  auto decided = [&](int text) {
+    ctx::Context c;
+    c.clear_from(Level::Layer);
+    c.set(FieldId::ObjectName, text);
+    return test::decide(**rs, Stage::Piece, c);
+  };
+  CHECK(decided(0)[PropId::Speed] == 20);
+  CHECK(decided(0)[PropId::Flow] == doctest::Approx(0.9));
+  CHECK(decided(1)[PropId::Speed] != 20);
+  CHECK(decided(1)[PropId::Flow] == doctest::Approx(0.9));
+  CHECK(decided(-1)[PropId::Flow] != doctest::Approx(0.9));
+  // The disassembly shows the text.
+  CHECK(vm::disassemble((*rs)->program()).find("loads") != std::string::npos);
+}
+
+TEST_CASE("verify: a program whose string table repeats a text is refused") {
+  auto p = test::program("rule \"lid\" when object.name == \"lid\" { speed = 20 mm/s }");
+  p.strings.push_back("lid");
+  auto rs = vm::RuleSet::create(std::move(p));
+  REQUIRE_FALSE(rs.ok());
+  CHECK(rs.error().to_string().find("repeats string 0") != std::string::npos);
+}

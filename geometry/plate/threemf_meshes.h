@@ -1,0 +1,41 @@
+// Internal to the 3MF loader: the meshes of a model part, read by a scanner of their own.
+//
+// lib3mf 1.8's XML reader builds an object per element: a model of 2 000 000 triangles takes it
+// seconds, about 10 times the load of the same meshes as binary STL (bench/bench_plate.sh). So the
+// loader reads each plain mesh here (`<mesh><vertices><vertex x y z/>...</vertices><triangles>
+// <triangle v1 v2 v3 .../>...</triangles></mesh>`, in the model's unit) and hands lib3mf the
+// model with those meshes replaced by a one-triangle placeholder that carries the object's id;
+// lib3mf still reads everything else (objects, components, build items, transforms, units,
+// metadata) and checks the package. A mesh the scanner does not follow (another namespace prefix,
+// a comment, an extension's element, an attribute value it cannot read, a coordinate that is no
+// finite number, an index out of range) is left in place for lib3mf, which reads it, or says what
+// is wrong with it, as before.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tranche::plate::threemf {
+
+struct MeshData {
+  std::vector<float> vertices;      // x, y, z of each vertex, in the model's unit
+  std::vector<uint32_t> triangles;  // v1, v2, v3 of each triangle (not yet checked against the vertices)
+};
+
+struct SplitModel {
+  std::string model;                    // the model part, the meshes read here replaced by placeholders
+  std::map<uint32_t, MeshData> meshes;  // by the id of their object
+};
+
+// Reads the plain meshes of the model part `xml`; `meshes` is empty when there was none.
+SplitModel split_meshes(std::string_view xml);
+
+// The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
+// (x, y, z each), if it is one.
+std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c);
+
+}  // namespace tranche::plate::threemf
