@@ -100,7 +100,7 @@ class Machine {
   uint32_t rule_ = UINT32_MAX;  // the rule whose code runs (for messages)
   uint16_t depth_read_ = 0;     // values read as "the rules before" being computed (for traces)
   uint64_t run_ = 0, rebuilds_ = 0;
-  Level limit_ = Level::Piece;  // candidates reading a deeper level are left out (see cand_level_)
+  schema::Level limit_ = schema::Level::Piece;  // candidates reading a deeper level are left out (see cand_level_)
 
   friend class RuleSet;
 };
