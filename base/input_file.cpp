@@ -9,6 +9,7 @@
 #include <new>
 #include <system_error>
 
+#include "base/run_files.h"
 
 namespace tranche {
 namespace {
@@ -49,6 +50,7 @@ Result<InputFile> InputFile::open(const std::string& path, const InputKind& kind
   InputFile f(fd, st, path, kind);
   if (S_ISDIR(st.st_mode)) return Error{path, fmt::format("is a directory, not {}", kind.what)};
   if (f.regular() && f.size() > kind.max_bytes) return f.too_large();
+  RunFiles::note_input(path, st, kind.what);
   return f;
 }
 

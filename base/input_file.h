@@ -2,7 +2,8 @@
 // every read has a documented size bound (docs/cli.md, "Files and safety"), a regular file
 // larger than its bound is refused from its size before a byte is read, and anything else (a
 // pipe, a FIFO, /dev/zero, a terminal) is read with the same bound and refused, with a clear
-// message, once it gives more.
+// message, once it gives more. Every file opened is noted as an input of the current run
+// (base/run_files.h), so that no output of the run can replace it.
 #pragma once
 
 #include <sys/stat.h>

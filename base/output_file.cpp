@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "base/input_file.h"
+#include "base/run_files.h"
 #include "base/temp_files.h"
 
 namespace tranche {
@@ -110,6 +111,7 @@ Result<OutputFile> OutputFile::create(const std::string& path, std::string what)
   if (exists && S_ISDIR(st.st_mode)) return Error{path, "is a folder; give a file name for " + s->what};
   if (exists && S_ISSOCK(st.st_mode))
     return Error{path, "is a socket; " + s->what + " can go to a file, a device or a FIFO"};
+  if (Status c = RunFiles::claim_output(path, s->what); !c) return c.error();
   if (exists && (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) || S_ISFIFO(st.st_mode))) {
     const bool fifo = S_ISFIFO(st.st_mode);
     s->device_fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (fifo ? O_NONBLOCK : 0));

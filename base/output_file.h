@@ -11,6 +11,8 @@
 //   truncation, never renamed or replaced. The bytes are spooled to an unnamed temporary file
 //   first and copied to the device at commit(), so a failed run sends nothing (a printer behind a
 //   FIFO never receives half a job). A FIFO without a reader is an error, not a hang.
+// - A destination that is an input of the current run, or another output of it, is refused with
+//   a message naming both (base/run_files.h).
 // - The temporary file is removed when the object is destroyed without commit() (an error, an
 //   exception) and when the process is ended by a signal (base/temp_files.h).
 #pragma once

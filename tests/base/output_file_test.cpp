@@ -12,6 +12,8 @@
 #include <fstream>
 #include <thread>
 
+#include "base/input_file.h"
+#include "base/run_files.h"
 #include "tests/support/fixtures.h"
 
 namespace fs = std::filesystem;
@@ -192,6 +194,34 @@ TEST_CASE("output file: a size limit stops the write with a message") {
   auto s = f->write("x");
   REQUIRE_FALSE(s.ok());
   CHECK(has(s.error().message, "the G-code would be larger than 10 bytes (--max-gcode-size); nothing was written"));
+}
+
+TEST_CASE("output file: an output that is an input of the run is refused, naming both") {
+  test::TempDir dir("output-input");
+  const fs::path model = dir / "self.stl";
+  { std::ofstream(model) << "solid x\nendsolid x\n"; }
+  fs::create_symlink(model, dir / "alias.stl");
+  {
+    tranche::RunFiles run;
+    auto in = tranche::read_input(model.string(), tranche::kModelInput);
+    REQUIRE(in.ok());
+    for (const fs::path& out : {model, dir / "alias.stl", dir / "." / "self.stl"}) {
+      auto f = OutputFile::create(out.string(), "the G-code");
+      REQUIRE_FALSE(f.ok());
+      CHECK(has(f.error().message, "refusing to write the G-code here"));
+      CHECK(has(f.error().message, "the model of this run ('" + model.string() + "')"));
+      CHECK(f.error().where == out.string());
+    }
+    // Two outputs of one run that are one file.
+    auto a = OutputFile::create((dir / "a.gcode").string(), "the G-code");
+    REQUIRE(a.ok());
+    auto b = OutputFile::create((dir / "a.gcode").string(), "the SVG export");
+    REQUIRE_FALSE(b.ok());
+    CHECK(has(b.error().message, "the G-code is already written to this file"));
+  }
+  CHECK(read(model) == "solid x\nendsolid x\n");
+  // Outside a run nothing is compared (rulec fmt rewrites its input on purpose).
+  CHECK(write_all(model.string(), "formatted").ok());
 }
 
 TEST_CASE("output file: a signal during the write removes the temporary and keeps the old file") {
