@@ -5,13 +5,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apps/rulec_commands.h"
+#include "base/input_file.h"
 #include "base/output_file.h"
 #include "grammar/ast/ast.h"
 #include "compiler/check.h"
@@ -168,14 +167,6 @@ int parse(int argc, char** argv, Args& a) {
   return -1;
 }
 
-std::optional<std::string> read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Loads, checks and lints; prints the diagnostics. Returns whether there were no errors.
 struct Front {
   tranche::diag::Sink sink;
@@ -271,9 +262,9 @@ int disasm(const Args& a) {
   using namespace tranche;
   int status = 0;
   for (const auto& file : a.files) {
-    auto bytes = read_all(file);
+    auto bytes = read_input(file, InputKind{"the rules file or bundle", kBundleInput.max_bytes});
     if (!bytes) {
-      std::fprintf(stderr, "rulec: error: %s: cannot read this file\n", file.c_str());
+      std::fprintf(stderr, "rulec: error: %s\n", bytes.error().to_string().c_str());
       status = 1;
       continue;
     }

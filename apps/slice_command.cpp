@@ -1,8 +1,10 @@
 #include "apps/slice_command.h"
 
-#include <filesystem>
-#include <fstream>
+#include <sys/stat.h>
 
+#include <filesystem>
+
+#include "base/input_file.h"
 #include "compiler/load_rules.h"
 #include "geometry/plate/detect.h"
 #include "geometry/plate/plate.h"
@@ -18,15 +20,18 @@ bool is_svg(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".svg") return false;
-  std::ifstream in(path, std::ios::binary);
+  // Peeked at only when it is a regular file: a FIFO's bytes are read once, by the loader.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return true;
+  auto in = InputFile::open(path, kSvgInput);
+  if (!in) return true;  // the loader says why
   std::string head(4096, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  std::error_code ec;
-  const plate::Detected d = plate::detect_format(head, std::filesystem::file_size(path, ec));
+  auto got = in->read_at(head.data(), head.size(), 0);
+  head.resize(got ? *got : 0);
+  const plate::Detected d = plate::detect_format(head, in->size());
   const bool mesh = d.sure && (d.format == plate::Format::ThreeMf || d.format == plate::Format::Obj ||
                                d.format == plate::Format::Stl);
-  return ec || !mesh;
+  return !mesh;
 }
 
 // Options of the plate other than the files, for the SVG check.

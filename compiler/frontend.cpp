@@ -3,12 +3,11 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "compiler/check.h"
 #include "compiler/names.h"
+#include "base/input_file.h"
 #include "base/result.h"
 
 namespace tranche::compiler {
@@ -17,25 +16,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr size_t kMaxUseDepth = 16;  // files being read at once: profiles nest a few deep
+constexpr size_t kMaxUseDepth = 16;
+static_assert(kMaxFileBytes == kRulesInput.max_bytes);  // files being read at once: profiles nest a few deep
 
 Result<std::string> read(const fs::path& path, const FrontendOptions& options) {
   if (options.read_file) {
     if (auto text = options.read_file(path)) return std::move(*text);
     return Error{path.string(), "no such file"};
   }
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return Error{path.string(), "no such file"};
-  if (!fs::is_regular_file(path, ec)) return Error{path.string(), "not a regular file"};
-  auto size = fs::file_size(path, ec);
-  if (ec) return Error{path.string(), ec.message()};
-  if (size > kMaxFileBytes)
-    return Error{path.string(), fmt::format("larger than {} MB", kMaxFileBytes >> 20)};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string(), "cannot be opened"};
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  // The one input reader: at most kMaxFileBytes, from a file, a FIFO or a device alike.
+  return read_input(path.string(), kRulesInput);
 }
 
 fs::path canonical_key(const fs::path& p) {

@@ -1,9 +1,8 @@
 // FillAngleScript on embedded CPython (pybind11), or a stub that explains its absence when the
 // build has no Python (TRANCHE_PYTHON off, or pybind11/Python headers not found).
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
+#include "base/input_file.h"
 #include "geometry/fillangle/fill_angle.h"
 
 #if TRANCHE_HAVE_PYTHON
@@ -21,14 +20,7 @@ std::string where_island(const FillAngleContext& c) {
   return "layer " + std::to_string(c.layer_index) + ", island " + std::to_string(c.island_index);
 }
 
-Result<std::string> read_script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path, "cannot open the fill-angle script"};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error{path, "cannot read the fill-angle script"};
-  return ss.str();
-}
+Result<std::string> read_script(const std::string& path) { return read_input(path, kScriptInput); }
 
 }  // namespace
 
