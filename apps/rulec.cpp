@@ -12,6 +12,7 @@
 #include "apps/rulec_commands.h"
 #include "base/input_file.h"
 #include "base/output_file.h"
+#include "base/run_files.h"
 #include "grammar/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/codegen.h"
@@ -230,6 +231,15 @@ int check(const Args& a) {
 int build(const Args& a) {
   using namespace tranche;
   if (a.output.empty()) return usage_error("build needs an output: -o FILE.bundle");
+  // The rules files (and every file they use) are inputs that the bundle may not replace.
+  RunFiles run;
+  for (const auto& file : a.files) RunFiles::note_input_path(file, "a rules file");
+  if (a.profile && compiler::profile_is_path(a.printer)) RunFiles::note_input_path(a.printer, "the printer profile");
+  if (a.profile && compiler::profile_is_path(a.material)) RunFiles::note_input_path(a.material, "the material profile");
+  if (Status s = RunFiles::claim_output(a.output, "the bundle"); !s) {
+    std::fprintf(stderr, "rulec: error: %s\n", s.error().to_string().c_str());
+    return 1;
+  }
   Front f;
   if (!front(a, f)) {
     std::fprintf(stderr, "rulec: %s; no bundle written\n", compiler::summary(f.sink.errors(), f.sink.warnings()).c_str());

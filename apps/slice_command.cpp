@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "base/input_file.h"
+#include "base/run_files.h"
+#include "compiler/frontend.h"
 #include "compiler/load_rules.h"
 #include "geometry/plate/detect.h"
 #include "geometry/plate/plate.h"
@@ -77,18 +79,28 @@ Result<plate::Bed> bed_from_profile(const pipeline::SliceOptions& options, const
   return bed;
 }
 
-}  // namespace
-
-Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
-  plate::PlateOptions plate;
-  plate.files = {options.model};
-  return slice(options, plate, report);
+// The files named on the command line, noted as inputs of the run before anything is read, and
+// the outputs checked against them and each other: `-o model.stl` is refused before any work.
+Status check_files(const pipeline::SliceOptions& o, const plate::PlateOptions& plate) {
+  for (const auto& f : plate.files) RunFiles::note_input_path(f, "a model");
+  for (const auto& r : o.rules) RunFiles::note_input_path(r, "a --rules file");
+  if (o.profile && compiler::profile_is_path(o.printer)) RunFiles::note_input_path(o.printer, "the printer profile");
+  if (o.profile && compiler::profile_is_path(o.material)) RunFiles::note_input_path(o.material, "the material profile");
+  if (!o.fill_angle_script.empty()) RunFiles::note_input_path(o.fill_angle_script, "the fill-angle script");
+  const std::pair<const std::string*, const char*> outputs[] = {{&o.output_gcode, "the G-code"},
+                                                                {&o.export_svg, "the SVG export"},
+                                                                {&o.export_layers, "the layer export"},
+                                                                {&o.export_preview, "the preview"}};
+  for (const auto& [path, what] : outputs)
+    if (!path->empty())
+      if (Status s = RunFiles::claim_output(*path, what); !s) return s;
+  return ok_status();
 }
 
-Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
-                                     Report& report) {
-  if (Status s = pipeline::check_options(options); !s) return s.error();
+Result<pipeline::SliceSummary> slice_run(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
+                                         Report& report) {
   if (plate.files.empty()) return Error{"", "no model given"};
+  if (Status s = check_files(options, plate); !s) return s.error();
   bool svg = false;
   for (const auto& f : plate.files) svg |= is_svg(f);
   if (svg && plate.files.size() > 1)
@@ -109,6 +121,21 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
   auto p = plate::build_plate(plate, *bed, report);
   if (!p) return p.error();
   return pipeline::run_slice(o, &*p, rules->get(), report);
+}
+
+}  // namespace
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
+  plate::PlateOptions plate;
+  plate.files = {options.model};
+  return slice(options, plate, report);
+}
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
+                                     Report& report) {
+  if (Status s = pipeline::check_options(options); !s) return s.error();
+  RunFiles run;  // every file read from here on is an input that no output may replace
+  return slice_run(options, plate, report);
 }
 
 }  // namespace tranche::app

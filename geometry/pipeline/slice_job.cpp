@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "base/run_files.h"
 #include "geometry/fillangle/fill_angle.h"
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
@@ -171,6 +172,9 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
     if (!s) return s.error();
     out.svg = std::move(*s);
   }
+  // The preview is written whole at the end: its file is checked now, before any output is.
+  if (!o.export_preview.empty())
+    if (Status s = RunFiles::claim_output(o.export_preview, "the preview"); !s) return s.error();
   if (!o.export_preview.empty())
     out.preview = std::make_unique<preview::PreviewEncoder>(static_cast<float>(setup.print_props[schema::PropId::BedSizeX]),
                                                             static_cast<float>(setup.print_props[schema::PropId::BedSizeY]),
