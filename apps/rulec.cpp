@@ -2,15 +2,19 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apps/rulec_commands.h"
 #include "base/input_file.h"
+#include "base/memory.h"
 #include "base/output_file.h"
 #include "base/run_files.h"
 #include "grammar/ast/ast.h"
@@ -332,7 +336,7 @@ int explain(const Args& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 2) return usage_error("no command");
   std::string_view cmd = argv[1];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
@@ -350,4 +354,16 @@ int main(int argc, char** argv) {
   if (cmd == "build") return build(a);
   if (cmd == "disasm") return disasm(a);
   return explain(a);
+}
+
+int main(int argc, char** argv) {
+  std::signal(SIGPIPE, SIG_IGN);  // a reader that goes away is a write error with a message
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "rulec: error: %s\n", tranche::out_of_memory("", "compiling", "simplify the rules").message.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rulec: internal error: %s; please report it\n", e.what());
+  }
+  return 1;
 }

@@ -1,6 +1,7 @@
 #include "apps/slice_args.h"
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -41,6 +42,8 @@ constexpr Spec kOptions[] = {
     {"--svg-tolerance", "MM", "a number", "largest distance between an SVG curve and its polyline (default 0.01)"},
     {"--background", "COLOR", "a colour", "the colour that erases with --overlap subtractive (default white)"},
     {"--strict", nullptr, nullptr, "treat geometry coherence warnings as errors"},
+    {"--max-memory", "MB", "a number of megabytes",
+     "the most memory (address space) the run may use; beyond it the run\nstops with an error and writes nothing"},
     {"-q,--quiet", nullptr, nullptr, "no progress output"},
     {"-h,--help", nullptr, nullptr, "this text"},
 };
@@ -120,6 +123,20 @@ Status svg_number(const std::string& option, const std::string& v, pipeline::Sli
     o.svg_tolerance_mm = x;
   }
   return ok_status();
+}
+
+// A whole number from `min` to `max` (the limits the message names).
+Result<uint64_t> whole_number(const std::string& option, const std::string& v, uint64_t min, uint64_t max,
+                              const char* unit) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long x = std::strtoull(v.c_str(), &end, 10);
+  if (v.empty() || v[0] == '-' || end == v.c_str() || *end != '\0' || errno == ERANGE)
+    return usage(option + " needs a whole number of " + unit + ", not '" + v + "'");
+  if (x < min || x > max)
+    return usage(option + " takes " + std::to_string(min) + " to " + std::to_string(max) + " " + unit + ", not '" + v +
+                 "'");
+  return static_cast<uint64_t>(x);
 }
 
 class Values {
@@ -240,6 +257,11 @@ Result<SliceArgs> parse_slice_args(const std::vector<std::string>& args, bool qu
   }
   for (const auto& extra : app.remaining())
     if (!extra.empty() && extra[0] == '-') return usage("unknown option '" + extra + "'");
+  if (!values["--max-memory"].empty()) {
+    auto mb = whole_number("--max-memory", values["--max-memory"].back(), 64, uint64_t{1} << 30, "MB");
+    if (!mb) return mb.error();
+    out.max_memory_mb = *mb;
+  }
   const Values v(values);
   if (Status s = slice_values(v, out.slice); !s) return s.error();
   if (Status s = plate_values(v, out.plate); !s) return s.error();

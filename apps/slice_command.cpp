@@ -3,8 +3,10 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <new>
 
 #include "base/input_file.h"
+#include "base/memory.h"
 #include "base/run_files.h"
 #include "compiler/frontend.h"
 #include "compiler/load_rules.h"
@@ -135,7 +137,11 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
                                      Report& report) {
   if (Status s = pipeline::check_options(options); !s) return s.error();
   RunFiles run;  // every file read from here on is an input that no output may replace
-  return slice_run(options, plate, report);
+  try {
+    return slice_run(options, plate, report);
+  } catch (const std::bad_alloc&) {  // compiling the rules, loading and placing the models
+    return out_of_memory("", "loading the models and rules");
+  }
 }
 
 }  // namespace tranche::app

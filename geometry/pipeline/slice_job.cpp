@@ -4,9 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <new>
+#include <stdexcept>
+#include <string_view>
 
 #include <fmt/format.h>
 
+#include "base/memory.h"
 #include "base/run_files.h"
 #include "geometry/fillangle/fill_angle.h"
 #include "geometry/io/svg_import.h"
@@ -300,9 +304,10 @@ Status check_options(const SliceOptions& options) {
   return ok_status();
 }
 
-Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rs,
-                               Report& report) {
-  if (Status s = check_options(options); !s) return s.error();
+namespace {
+
+Result<SliceSummary> run_slice_unguarded(const SliceOptions& options, const plate::Plate* plate,
+                                         const vm::RuleSet* rs, Report& report) {
   // A --set of a property to a plain value (`0.2`, `20%`, `rear`) is an override, the last layer
   // of the cascade; the others (expressions, params) were compiled into `rs` by the caller.
   std::vector<std::pair<std::string, std::string>> plain;
@@ -342,6 +347,24 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* 
   if (!sliced) return sliced.error();
   summary.triangles = sliced->triangles;
   return finish(*sliced, summary, script.get(), options, progress, **cascade, rs, report);
+}
+
+}  // namespace
+
+Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rs,
+                               Report& report) {
+  if (Status s = check_options(options); !s) return s.error();
+  // Out of memory anywhere (slicing, islands, the print setup; the layer loop names its layer): an
+  // error like any other. The outputs are not committed, so nothing is written.
+  try {
+    return run_slice_unguarded(options, plate, rs, report);
+  } catch (const std::bad_alloc&) {
+    return out_of_memory("", "slicing");
+  } catch (const std::runtime_error& e) {
+    // TBB starts its worker threads on demand; with the address space used up, it cannot.
+    if (std::string_view(e.what()).find("pthread_create") == std::string_view::npos) throw;
+    return out_of_memory("", "starting the slicing threads");
+  }
 }
 
 }  // namespace tranche::pipeline
