@@ -66,6 +66,11 @@ std::string profile_source(const std::string& printer, const std::string& materi
 bool profile_is_path(const std::string& name);
 inline constexpr const char* kProfileName = "--printer/--material profile";
 
+// The number of `rule` and `on` items in a rules text (the keywords outside braces, strings and
+// comments): a cheap count, made before parsing, that refuses more rules than the VM numbers
+// (E0013).
+size_t count_rule_items(std::string_view text);
+
 // Everything `rulec check` does: load each file, add the `--set`s, check, lint.
 ast::Program compile(const std::vector<std::string>& paths,
                      const std::vector<std::pair<std::string, std::string>>& sets,
