@@ -44,6 +44,7 @@ constexpr Spec kOptions[] = {
     {"--strict", nullptr, nullptr, "treat geometry coherence warnings as errors"},
     {"--max-memory", "MB", "a number of megabytes",
      "the most memory (address space) the run may use; beyond it the run\nstops with an error and writes nothing"},
+    {"--max-gcode-size", "MB", "a number of megabytes", "the largest G-code written (default 2048; 0: no limit)"},
     {"-q,--quiet", nullptr, nullptr, "no progress output"},
     {"-h,--help", nullptr, nullptr, "this text"},
 };
@@ -108,12 +109,14 @@ std::string missing_value(const std::string& what) {
 
 Error usage(const std::string& message) { return Error{"", message}; }
 
-// --svg-layers, --svg-height, --svg-tolerance: a positive number (whole, for layers).
+// --svg-layers, --svg-height, --svg-tolerance: a positive number (whole, for layers), at most 100000.
 Status svg_number(const std::string& option, const std::string& v, pipeline::SliceOptions& o) {
+  constexpr double kMax = 1e5;
   char* end = nullptr;
   const double x = std::strtod(v.c_str(), &end);
-  if (end == v.c_str() || *end != '\0' || !(x > 0) || x > 1e5)
-    return usage(option + " needs a positive number, not '" + v + "'");
+  if (end == v.c_str() || *end != '\0' || !(x > 0)) return usage(option + " needs a positive number, not '" + v + "'");
+  const char* unit = option == "--svg-layers" ? "layers" : "mm";
+  if (!(x <= kMax)) return usage(option + " takes at most 100000 " + unit + ", not '" + v + "'");
   if (option == "--svg-layers") {
     if (x != std::floor(x)) return usage("--svg-layers needs a whole number of layers, not '" + v + "'");
     o.svg_layers = static_cast<int>(x);
@@ -137,6 +140,16 @@ Result<uint64_t> whole_number(const std::string& option, const std::string& v, u
     return usage(option + " takes " + std::to_string(min) + " to " + std::to_string(max) + " " + unit + ", not '" + v +
                  "'");
   return static_cast<uint64_t>(x);
+}
+
+// --max-gcode-size MB (--max-memory is read by parse_slice_args).
+Status limit_values(const std::map<std::string, std::vector<std::string>>& values, pipeline::SliceOptions& o) {
+  if (auto it = values.find("--max-gcode-size"); it != values.end() && !it->second.empty()) {
+    auto mb = whole_number("--max-gcode-size", it->second.back(), 0, uint64_t{1} << 30, "MB");
+    if (!mb) return mb.error();
+    o.max_gcode_mb = *mb;
+  }
+  return ok_status();
 }
 
 class Values {
@@ -257,6 +270,7 @@ Result<SliceArgs> parse_slice_args(const std::vector<std::string>& args, bool qu
   }
   for (const auto& extra : app.remaining())
     if (!extra.empty() && extra[0] == '-') return usage("unknown option '" + extra + "'");
+  if (Status s = limit_values(values, out.slice); !s) return s.error();
   if (!values["--max-memory"].empty()) {
     auto mb = whole_number("--max-memory", values["--max-memory"].back(), 64, uint64_t{1} << 30, "MB");
     if (!mb) return mb.error();

@@ -162,6 +162,7 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
     if (!pictures) return pictures.error();
     info.thumbnails = std::move(*pictures);
     info.model_name = o.model;
+    info.max_bytes = o.max_gcode_mb << 20;
     info.sets = o.sets;
     if (o.profile)
       info.notes.push_back(fmt::format("profile: stdlib defaults, printer {}, material {}", o.printer, o.material));

@@ -76,3 +76,26 @@ TEST_CASE("files: an output that is an input of the run is refused, naming both,
   auto again = app::slice(o, report);
   REQUIRE_MESSAGE(again.ok(), again.error().to_string());
 }
+
+TEST_CASE("files: a G-code larger than --max-gcode-size is an error, and nothing is written") {
+  test::TempDir dir("files-cap");
+  const std::string model = (dir / "tall.stl").string();
+  REQUIRE(geo::write_stl_binary(model, geo::box({60, 60, 30})).ok());
+  const std::string out = write(dir / "out.gcode", "previous\n");
+  pipeline::SliceOptions o;
+  o.model = model;
+  o.quiet = true;
+  o.sets = {{"infill_density", "100%"}};
+  o.output_gcode = out;
+  o.max_gcode_mb = 1;
+  Report report;
+  auto r = app::slice(o, report);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().where == out);
+  CHECK(has(r.error().message, "the G-code would be larger than 1 MiB (--max-gcode-size 1: raise it"));
+  CHECK(test::read_file(out) == "previous\n");
+  o.max_gcode_mb = 0;  // no limit
+  auto unlimited = app::slice(o, report);
+  REQUIRE_MESSAGE(unlimited.ok(), unlimited.error().to_string());
+  CHECK(fs::file_size(out) > (1u << 20));
+}
