@@ -42,6 +42,8 @@ constexpr Spec kOptions[] = {
     {"--svg-tolerance", "MM", "a number", "largest distance between an SVG curve and its polyline (default 0.01)"},
     {"--background", "COLOR", "a colour", "the colour that erases with --overlap subtractive (default white)"},
     {"--strict", nullptr, nullptr, "treat geometry coherence warnings as errors"},
+    {"--script-timeout", "SECONDS", "a number of seconds",
+     "the longest one fill_angle(ctx) call may take (default 5)"},
     {"--max-memory", "MB", "a number of megabytes",
      "the most memory (address space) the run may use; beyond it the run\nstops with an error and writes nothing"},
     {"--max-gcode-size", "MB", "a number of megabytes", "the largest G-code written (default 2048; 0: no limit)"},
@@ -142,8 +144,16 @@ Result<uint64_t> whole_number(const std::string& option, const std::string& v, u
   return static_cast<uint64_t>(x);
 }
 
-// --max-gcode-size MB (--max-memory is read by parse_slice_args).
+// --script-timeout SECONDS, --max-gcode-size MB (--max-memory is read by parse_slice_args).
 Status limit_values(const std::map<std::string, std::vector<std::string>>& values, pipeline::SliceOptions& o) {
+  if (auto it = values.find("--script-timeout"); it != values.end() && !it->second.empty()) {
+    const std::string& v = it->second.back();
+    char* end = nullptr;
+    const double s = std::strtod(v.c_str(), &end);
+    if (end == v.c_str() || *end != '\0' || !(s > 0) || !(s <= 86400))
+      return usage("--script-timeout needs a number of seconds from 0.001 to 86400, not '" + v + "'");
+    o.script_timeout_s = s;
+  }
   if (auto it = values.find("--max-gcode-size"); it != values.end() && !it->second.empty()) {
     auto mb = whole_number("--max-gcode-size", it->second.back(), 0, uint64_t{1} << 30, "MB");
     if (!mb) return mb.error();

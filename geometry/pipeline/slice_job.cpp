@@ -321,7 +321,7 @@ Result<SliceSummary> run_slice_unguarded(const SliceOptions& options, const plat
 
   std::unique_ptr<geo::FillAngleScript> script;  // loaded first: a broken script fails before slicing
   if (!options.fill_angle_script.empty()) {
-    auto s = geo::FillAngleScript::load(options.fill_angle_script);
+    auto s = geo::FillAngleScript::load(options.fill_angle_script, options.script_timeout_s);
     if (!s) return s.error();
     script = std::move(*s);
   }

@@ -44,6 +44,7 @@ struct SliceOptions {
   bool allow_off_bed = false;               // --allow-off-bed: a move off the bed is a warning, not an error
   bool quiet = false;                       // --quiet: no progress on stderr
   uint64_t max_gcode_mb = kDefaultMaxGcodeMb;  // --max-gcode-size: the largest G-code written (MiB; 0: none)
+  double script_timeout_s = 5;              // --script-timeout: the longest a fill_angle(ctx) call may take
 };
 
 // What a finished run reports to the user.
