@@ -43,6 +43,10 @@ const Setup& setup() {
     Setup out;
     out.dir = fs::temp_directory_path() / ("fuzz-slice-" + std::to_string(::getpid()));
     fs::create_directories(out.dir);
+    std::atexit([] {  // libFuzzer ends with exit(): the scratch folder goes with it
+      std::error_code ec;
+      fs::remove_all(fs::temp_directory_path() / ("fuzz-slice-" + std::to_string(::getpid())), ec);
+    });
     const fs::path rules = out.dir / "fuzz.rules";
     std::ofstream(rules) << kRules;
     tranche::Report report;
