@@ -2,17 +2,21 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <new>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apps/rulec_commands.h"
+#include "base/input_file.h"
+#include "base/memory.h"
 #include "base/output_file.h"
+#include "base/run_files.h"
 #include "grammar/ast/ast.h"
 #include "compiler/check.h"
 #include "compiler/codegen.h"
@@ -170,14 +174,6 @@ int parse(int argc, char** argv, Args& a) {
   return -1;
 }
 
-std::optional<std::string> read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Loads, checks and lints; prints the diagnostics. Returns whether there were no errors.
 struct Front {
   tranche::diag::Sink sink;
@@ -241,6 +237,15 @@ int check(const Args& a) {
 int build(const Args& a) {
   using namespace tranche;
   if (a.output.empty()) return usage_error("build needs an output: -o FILE.bundle");
+  // The rules files (and every file they use) are inputs that the bundle may not replace.
+  RunFiles run;
+  for (const auto& file : a.files) RunFiles::note_input_path(file, "a rules file");
+  if (a.profile && compiler::profile_is_path(a.printer)) RunFiles::note_input_path(a.printer, "the printer profile");
+  if (a.profile && compiler::profile_is_path(a.material)) RunFiles::note_input_path(a.material, "the material profile");
+  if (Status s = RunFiles::claim_output(a.output, "the bundle"); !s) {
+    std::fprintf(stderr, "rulec: error: %s\n", s.error().to_string().c_str());
+    return 1;
+  }
   Front f;
   if (!front(a, f)) {
     std::fprintf(stderr, "rulec: %s; no bundle written\n", compiler::summary(f.sink.errors(), f.sink.warnings()).c_str());
@@ -273,9 +278,9 @@ int disasm(const Args& a) {
   using namespace tranche;
   int status = 0;
   for (const auto& file : a.files) {
-    auto bytes = read_all(file);
+    auto bytes = read_input(file, InputKind{"the rules file or bundle", kBundleInput.max_bytes});
     if (!bytes) {
-      std::fprintf(stderr, "rulec: error: %s: cannot read this file\n", file.c_str());
+      std::fprintf(stderr, "rulec: error: %s\n", bytes.error().to_string().c_str());
       status = 1;
       continue;
     }
@@ -333,7 +338,7 @@ int explain(const Args& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 2) return usage_error("no command");
   std::string_view cmd = argv[1];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
@@ -351,4 +356,16 @@ int main(int argc, char** argv) {
   if (cmd == "build") return build(a);
   if (cmd == "disasm") return disasm(a);
   return explain(a);
+}
+
+int main(int argc, char** argv) {
+  std::signal(SIGPIPE, SIG_IGN);  // a reader that goes away is a write error with a message
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "rulec: error: %s\n", tranche::out_of_memory("", "compiling", "simplify the rules").message.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rulec: internal error: %s; please report it\n", e.what());
+  }
+  return 1;
 }

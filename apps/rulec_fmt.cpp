@@ -1,14 +1,12 @@
 // `rulec fmt [--check] FILE...|-`: rewrites .rules files (and the ```rules blocks of markdown
 // files) in the canonical layout of grammar/format.h.
 #include <cstdio>
-#include <fstream>
-#include <iostream>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apps/rulec_commands.h"
+#include "base/input_file.h"
 #include "base/output_file.h"
 #include "compiler/diagnostics.h"
 #include "grammar/format.h"
@@ -20,14 +18,6 @@ namespace {
 constexpr const char* kFmtUsage =
     "usage: rulec fmt [--check] FILE...\n"
     "       rulec fmt -          (reads standard input, writes the formatted text on standard output)\n";
-
-std::optional<std::string> slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The canonical text of `text`, or nothing after printing its syntax errors.
 std::optional<std::string> canonical(const std::string& path, std::string text) {
@@ -67,17 +57,21 @@ int fmt_command(int argc, char** argv) {
   int status = 0;
   for (const auto& file : files) {
     if (file == "-") {
-      std::stringstream in;
-      in << std::cin.rdbuf();
-      auto out = canonical("<stdin>", in.str());
+      auto in = InputFile::adopt(0, "<stdin>", kRulesInput);
+      auto text = in ? in->read_rest() : Result<std::string>(in.error());
+      if (!text) {
+        std::fprintf(stderr, "rulec: error: %s\n", text.error().to_string().c_str());
+        return 1;
+      }
+      auto out = canonical("<stdin>", *text);
       if (!out) return 1;
       std::fwrite(out->data(), 1, out->size(), stdout);
-      if (check && *out != in.str()) status = 1;
+      if (check && *out != *text) status = 1;
       continue;
     }
-    auto text = slurp(file);
+    auto text = read_input(file, kRulesInput);
     if (!text) {
-      std::fprintf(stderr, "rulec: error: %s: cannot read this file\n", file.c_str());
+      std::fprintf(stderr, "rulec: error: %s\n", text.error().to_string().c_str());
       status = 1;
       continue;
     }

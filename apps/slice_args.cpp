@@ -1,6 +1,7 @@
 #include "apps/slice_args.h"
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -43,6 +44,11 @@ constexpr Spec kOptions[] = {
     {"--svg-tolerance", "MM", "a number", "largest distance between an SVG curve and its polyline (default 0.01)"},
     {"--background", "COLOR", "a colour", "the colour that erases with --overlap subtractive (default white)"},
     {"--strict", nullptr, nullptr, "treat geometry coherence warnings as errors"},
+    {"--script-timeout", "SECONDS", "a number of seconds",
+     "the longest one fill_angle(ctx) call may take (default 5)"},
+    {"--max-memory", "MB", "a number of megabytes",
+     "the most memory (address space) the run may use; beyond it the run\nstops with an error and writes nothing"},
+    {"--max-gcode-size", "MB", "a number of megabytes", "the largest G-code written (default 2048; 0: no limit)"},
     {"-q,--quiet", nullptr, nullptr, "no progress output"},
     {"-h,--help", nullptr, nullptr, "this text"},
 };
@@ -107,12 +113,14 @@ std::string missing_value(const std::string& what) {
 
 Error usage(const std::string& message) { return Error{"", message}; }
 
-// --svg-layers, --svg-height, --svg-tolerance: a positive number (whole, for layers).
+// --svg-layers, --svg-height, --svg-tolerance: a positive number (whole, for layers), at most 100000.
 Status svg_number(const std::string& option, const std::string& v, pipeline::SliceOptions& o) {
+  constexpr double kMax = 1e5;
   char* end = nullptr;
   const double x = std::strtod(v.c_str(), &end);
-  if (end == v.c_str() || *end != '\0' || !(x > 0) || x > 1e5)
-    return usage(option + " needs a positive number, not '" + v + "'");
+  if (end == v.c_str() || *end != '\0' || !(x > 0)) return usage(option + " needs a positive number, not '" + v + "'");
+  const char* unit = option == "--svg-layers" ? "layers" : "mm";
+  if (!(x <= kMax)) return usage(option + " takes at most 100000 " + unit + ", not '" + v + "'");
   if (option == "--svg-layers") {
     if (x != std::floor(x)) return usage("--svg-layers needs a whole number of layers, not '" + v + "'");
     o.svg_layers = static_cast<int>(x);
@@ -120,6 +128,38 @@ Status svg_number(const std::string& option, const std::string& v, pipeline::Sli
     o.svg_height_mm = x;
   } else {
     o.svg_tolerance_mm = x;
+  }
+  return ok_status();
+}
+
+// A whole number from `min` to `max` (the limits the message names).
+Result<uint64_t> whole_number(const std::string& option, const std::string& v, uint64_t min, uint64_t max,
+                              const char* unit) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long x = std::strtoull(v.c_str(), &end, 10);
+  if (v.empty() || v[0] == '-' || end == v.c_str() || *end != '\0' || errno == ERANGE)
+    return usage(option + " needs a whole number of " + unit + ", not '" + v + "'");
+  if (x < min || x > max)
+    return usage(option + " takes " + std::to_string(min) + " to " + std::to_string(max) + " " + unit + ", not '" + v +
+                 "'");
+  return static_cast<uint64_t>(x);
+}
+
+// --script-timeout SECONDS, --max-gcode-size MB (--max-memory is read by parse_slice_args).
+Status limit_values(const std::map<std::string, std::vector<std::string>>& values, pipeline::SliceOptions& o) {
+  if (auto it = values.find("--script-timeout"); it != values.end() && !it->second.empty()) {
+    const std::string& v = it->second.back();
+    char* end = nullptr;
+    const double s = std::strtod(v.c_str(), &end);
+    if (end == v.c_str() || *end != '\0' || !(s > 0) || !(s <= 86400))
+      return usage("--script-timeout needs a number of seconds from 0.001 to 86400, not '" + v + "'");
+    o.script_timeout_s = s;
+  }
+  if (auto it = values.find("--max-gcode-size"); it != values.end() && !it->second.empty()) {
+    auto mb = whole_number("--max-gcode-size", it->second.back(), 0, uint64_t{1} << 30, "MB");
+    if (!mb) return mb.error();
+    o.max_gcode_mb = *mb;
   }
   return ok_status();
 }
@@ -244,6 +284,12 @@ Result<SliceArgs> parse_slice_args(const std::vector<std::string>& args, bool qu
   }
   for (const auto& extra : app.remaining())
     if (!extra.empty() && extra[0] == '-') return usage("unknown option '" + extra + "'");
+  if (Status s = limit_values(values, out.slice); !s) return s.error();
+  if (!values["--max-memory"].empty()) {
+    auto mb = whole_number("--max-memory", values["--max-memory"].back(), 64, uint64_t{1} << 30, "MB");
+    if (!mb) return mb.error();
+    out.max_memory_mb = *mb;
+  }
   const Values v(values);
   if (Status s = slice_values(v, out.slice); !s) return s.error();
   if (Status s = plate_values(v, out.plate); !s) return s.error();

@@ -3,6 +3,7 @@
 // option needs. Shared by the executable and the tests.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct SliceArgs {
   pipeline::SliceOptions slice;  // slice.model: the first model
   plate::PlateOptions plate;     // plate.files: every model
   bool help = false;             // -h/--help: print slice_usage() and nothing else
+  uint64_t max_memory_mb = 0;    // --max-memory: the process's address-space limit (0: none), set by main
 };
 
 // `args` are the words after `tranche slice`. Errors are usage errors (the caller exits with 2):

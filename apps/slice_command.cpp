@@ -1,8 +1,14 @@
 #include "apps/slice_command.h"
 
-#include <filesystem>
-#include <fstream>
+#include <sys/stat.h>
 
+#include <filesystem>
+#include <new>
+
+#include "base/input_file.h"
+#include "base/memory.h"
+#include "base/run_files.h"
+#include "compiler/frontend.h"
 #include "compiler/load_rules.h"
 #include "geometry/pipeline/load_plate.h"
 #include "geometry/plate/detect.h"
@@ -19,15 +25,18 @@ bool is_svg(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".svg") return false;
-  std::ifstream in(path, std::ios::binary);
+  // Peeked at only when it is a regular file: a FIFO's bytes are read once, by the loader.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return true;
+  auto in = InputFile::open(path, kSvgInput);
+  if (!in) return true;  // the loader says why
   std::string head(4096, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  std::error_code ec;
-  const plate::Detected d = plate::detect_format(head, std::filesystem::file_size(path, ec));
+  auto got = in->read_at(head.data(), head.size(), 0);
+  head.resize(got ? *got : 0);
+  const plate::Detected d = plate::detect_format(head, in->size());
   const bool mesh = d.sure && (d.format == plate::Format::ThreeMf || d.format == plate::Format::Obj ||
                                d.format == plate::Format::Stl);
-  return ec || !mesh;
+  return !mesh;
 }
 
 // Options of the plate other than the files, for the SVG check.
@@ -64,18 +73,28 @@ Result<plate::Bed> bed_from_profile(const pipeline::SliceOptions& options, const
   return pipeline::decide_bed(**cascade);
 }
 
-}  // namespace
-
-Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
-  plate::PlateOptions plate;
-  plate.files = {options.model};
-  return slice(options, plate, report);
+// The files named on the command line, noted as inputs of the run before anything is read, and
+// the outputs checked against them and each other: `-o model.stl` is refused before any work.
+Status check_files(const pipeline::SliceOptions& o, const plate::PlateOptions& plate) {
+  for (const auto& f : plate.files) RunFiles::note_input_path(f, "a model");
+  for (const auto& r : o.rules) RunFiles::note_input_path(r, "a --rules file");
+  if (o.profile && compiler::profile_is_path(o.printer)) RunFiles::note_input_path(o.printer, "the printer profile");
+  if (o.profile && compiler::profile_is_path(o.material)) RunFiles::note_input_path(o.material, "the material profile");
+  if (!o.fill_angle_script.empty()) RunFiles::note_input_path(o.fill_angle_script, "the fill-angle script");
+  const std::pair<const std::string*, const char*> outputs[] = {{&o.output_gcode, "the G-code"},
+                                                                {&o.export_svg, "the SVG export"},
+                                                                {&o.export_layers, "the layer export"},
+                                                                {&o.export_preview, "the preview"}};
+  for (const auto& [path, what] : outputs)
+    if (!path->empty())
+      if (Status s = RunFiles::claim_output(*path, what); !s) return s;
+  return ok_status();
 }
 
-Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
-                                     Report& report) {
-  if (Status s = pipeline::check_options(options); !s) return s.error();
+Result<pipeline::SliceSummary> slice_run(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
+                                         Report& report) {
   if (plate.files.empty()) return Error{"", "no model given"};
+  if (Status s = check_files(options, plate); !s) return s.error();
   bool svg = false;
   for (const auto& f : plate.files) svg |= is_svg(f);
   if (svg && plate.files.size() > 1)
@@ -96,6 +115,25 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
   auto p = plate::build_plate(plate, *bed, report);
   if (!p) return p.error();
   return pipeline::run_slice(o, &*p, rules->get(), report);
+}
+
+}  // namespace
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, Report& report) {
+  plate::PlateOptions plate;
+  plate.files = {options.model};
+  return slice(options, plate, report);
+}
+
+Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, const plate::PlateOptions& plate,
+                                     Report& report) {
+  if (Status s = pipeline::check_options(options); !s) return s.error();
+  RunFiles run;  // every file read from here on is an input that no output may replace
+  try {
+    return slice_run(options, plate, report);
+  } catch (const std::bad_alloc&) {  // compiling the rules, loading and placing the models
+    return out_of_memory("", "loading the models and rules");
+  }
 }
 
 }  // namespace tranche::app

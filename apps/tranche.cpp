@@ -2,13 +2,17 @@
 // slice (apps/slice_command.h); prints warnings, errors and the files written.
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "apps/slice_args.h"
 #include "apps/slice_command.h"
+#include "base/memory.h"
 
 namespace {
 
@@ -17,9 +21,7 @@ int usage_error(const std::string& msg) {
   return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   if (argc < 2) return usage_error("missing command");
   std::string_view cmd = argv[1];
   if (cmd == "-h" || cmd == "--help" || cmd == "help") {
@@ -34,6 +36,9 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  if (args->max_memory_mb)
+    if (tranche::Status s = tranche::set_memory_limit(args->max_memory_mb); !s) return usage_error(s.error().to_string());
+
   tranche::Report report;
   auto result = tranche::app::slice(args->slice, args->plate, report);
   for (const auto& w : report.warnings())
@@ -45,4 +50,20 @@ int main(int argc, char** argv) {
   std::fputs(result->explanation.c_str(), stdout);
   for (const auto& f : result->written) std::printf("wrote %s\n", f.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::signal(SIGPIPE, SIG_IGN);  // a reader that goes away is a write error with a message, not a kill
+  // Anything that escapes the library's own error handling still ends in a message and exit 1,
+  // never an abort; the outputs' temporary files are removed by their destructors.
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: %s\n", tranche::out_of_memory("", "slicing").message.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: internal error: %s; please report it\n", e.what());
+  }
+  return 1;
 }

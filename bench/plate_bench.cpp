@@ -91,7 +91,7 @@ int load(const std::string& dir, int runs) {
     return objects.ok();
   });
   if (stl_s < 0 || three_s < 0 || loaded != 10) return fail("a load failed");
-  auto bytes = geo::read_file_bytes(three, "a 3MF file");
+  auto bytes = geo::read_file_bytes(three);
   if (!bytes) return fail(bytes.error().to_string());
   size_t model_bytes = 0;
   const double inflate_s = best_of(runs, [&] {

@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "compiler/check.h"
 #include "compiler/names.h"
+#include "runtime/vm/verify.h"
+#include "base/input_file.h"
 #include "base/result.h"
 
 namespace tranche::compiler {
@@ -17,26 +17,54 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr size_t kMaxUseDepth = 16;  // files being read at once: profiles nest a few deep
+constexpr size_t kMaxUseDepth = 16;
+static_assert(kMaxFileBytes == kRulesInput.max_bytes);  // files being read at once: profiles nest a few deep
 
 Result<std::string> read(const fs::path& path, const FrontendOptions& options) {
   if (options.read_file) {
     if (auto text = options.read_file(path)) return std::move(*text);
     return Error{path.string(), "no such file"};
   }
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return Error{path.string(), "no such file"};
-  if (!fs::is_regular_file(path, ec)) return Error{path.string(), "not a regular file"};
-  auto size = fs::file_size(path, ec);
-  if (ec) return Error{path.string(), ec.message()};
-  if (size > kMaxFileBytes)
-    return Error{path.string(), fmt::format("larger than {} MB", kMaxFileBytes >> 20)};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string(), "cannot be opened"};
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  // The one input reader: at most kMaxFileBytes, from a file, a FIFO or a device alike.
+  return read_input(path.string(), kRulesInput);
 }
+
+bool ident_byte(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u >= 0x80 || u == '_' || (u >= '0' && u <= '9') || ((u | 0x20) >= 'a' && (u | 0x20) <= 'z');
+}
+
+}  // namespace
+
+size_t count_rule_items(std::string_view text) {
+  size_t n = 0, depth = 0;
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '#') {  // a comment, to the end of the line
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
+    } else if (text.substr(i, 3) == "\"\"\"") {
+      const size_t end = text.find("\"\"\"", i + 3);
+      i = end == std::string_view::npos ? text.size() : end + 3;
+    } else if (c == '"') {  // a string, to its quote or the end of its line
+      for (++i; i < text.size() && text[i] != '"' && text[i] != '\n' && text[i] != '\r'; ++i)
+        if (text[i] == '\\') ++i;
+      ++i;
+    } else if (c == '{' || c == '}') {
+      depth = c == '{' ? depth + 1 : depth - (depth > 0);
+      ++i;
+    } else if (ident_byte(c)) {
+      const size_t start = i;
+      while (i < text.size() && ident_byte(text[i])) ++i;
+      const std::string_view word = text.substr(start, i - start);
+      if (depth == 0 && (word == "rule" || word == "on")) ++n;
+    } else {
+      ++i;
+    }
+  }
+  return n;
+}
+
+namespace {
 
 fs::path canonical_key(const fs::path& p) {
   std::error_code ec;
@@ -58,6 +86,12 @@ class Loader {
 
   void expand(uint32_t file, const fs::path& key) {
     loaded_[key.string()] = file;
+    if (too_many_rules(file)) {
+      ast::File empty;
+      empty.id = file;
+      program_.files.push_back(std::move(empty));
+      return;
+    }
     stack_.push_back(file);
     ast::File parsed = options_.parser ? options_.parser(program_.sources, file, sink_)
                                        : grammar::parse_file(program_.sources, file, sink_, options_.parse);
@@ -123,6 +157,22 @@ class Loader {
   }
 
  private:
+  // More rules than the VM numbers (vm::kMaxRules), counted from the text before it is parsed: a
+  // file of 100 000 rules is refused in milliseconds, not after a minute of compiling.
+  bool too_many_rules(uint32_t file) {
+    const size_t here = count_rule_items(program_.sources.file(file).text);
+    const size_t total = program_.cascade.size() + here;
+    if (total <= vm::kMaxRules) return false;
+    sink_
+        .error("E0013", program_.sources.span(file, 0, 0),
+               fmt::format("too many rules: this file has {}{}, and at most {} can be compiled", here,
+                           total > here ? fmt::format(" ({} with the files before it)", total) : std::string(),
+                           vm::kMaxRules),
+               "too many rules")
+        .help("split the rules into several runs, or merge rules that set the same properties");
+    return true;
+  }
+
   // The file a `use` names, and whether it came from the stdlib directory.
   std::optional<std::pair<fs::path, bool>> resolve(const ast::Use& use, uint32_t from) {
     const std::string& t = use.target;

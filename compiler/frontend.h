@@ -29,15 +29,16 @@ struct FrontendOptions {
   std::string exe_path;    // argv[0], for <exe dir>/../share/tranche/stdlib
   grammar::ParseOptions parse;
   bool lints = true;
-  // Reads a file's bytes; nothing if it is missing or not a regular file. Tests and the fuzzer
-  // replace it; the default reads from disk, refusing files over kMaxFileBytes.
+  // Reads a file's bytes; nothing if it cannot be read. Tests and the fuzzer replace it; the
+  // default reads through base/input_file.h (kRulesInput: at most kMaxFileBytes, from a regular
+  // file or a stream alike).
   std::function<std::optional<std::string>(const std::filesystem::path&)> read_file;
   // Parses file `id` of the program; grammar::parse_file when unset. The language server passes
   // one that copies the items of the unchanged parts of a file from its previous parse.
   std::function<ast::File(const ast::SourceMap&, uint32_t id, diag::Sink&)> parser;
 };
 
-inline constexpr size_t kMaxFileBytes = 16u << 20;
+inline constexpr size_t kMaxFileBytes = 16u << 20;  // kRulesInput.max_bytes
 
 // The candidate stdlib directories, in order of preference, and the one in use (empty if none exists).
 std::vector<std::filesystem::path> stdlib_candidates(const FrontendOptions& options);
@@ -64,6 +65,11 @@ std::string profile_source(const std::string& printer, const std::string& materi
 // Whether a --printer/--material value is a path to a file rather than a stdlib name.
 bool profile_is_path(const std::string& name);
 inline constexpr const char* kProfileName = "--printer/--material profile";
+
+// The number of `rule` and `on` items in a rules text (the keywords outside braces, strings and
+// comments): a cheap count, made before parsing, that refuses more rules than the VM numbers
+// (E0013).
+size_t count_rule_items(std::string_view text);
 
 // Everything `rulec check` does: load each file, add the `--set`s, check, lint.
 ast::Program compile(const std::vector<std::string>& paths,

@@ -5,9 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <tuple>
-#include <fstream>
-#include <sstream>
 
+#include "base/input_file.h"
 #include "compiler/check.h"
 #include "compiler/codegen.h"
 #include "compiler/diagnostics.h"
@@ -19,17 +18,37 @@ namespace tranche::compiler {
 
 namespace {
 
-std::optional<std::string> read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return std::nullopt;
-  return ss.str();
+// A --rules file: a bundle (up to kBundleInput's bound) or rules text (up to kRulesInput's), read
+// once, so that a FIFO or a pipe can be given too.
+Result<std::string> read_rules_or_bundle(const std::string& path) {
+  constexpr InputKind kRulesOrBundle{"the rules file", kBundleInput.max_bytes};
+  auto f = InputFile::open(path, kRulesOrBundle);
+  if (!f) return f.error();
+  // The first bytes say which it is, and so which bound applies to the rest.
+  std::string head(sizeof vm::kBundleMagic, '\0');
+  size_t got = 0;
+  while (got < head.size()) {
+    auto n = f->read(head.data() + got, head.size() - got);
+    if (!n) return n.error();
+    if (*n == 0) break;
+    got += *n;
+  }
+  head.resize(got);
+  f->set_kind(vm::looks_like_bundle(head) ? kBundleInput : kRulesInput);
+  if (!f->regular() || f->size() <= kRulesInput.max_bytes || vm::looks_like_bundle(head)) {
+    auto rest = f->read_rest();
+    if (!rest) return rest.error();
+    return head + *rest;
+  }
+  return Error{path, fmt::format("the rules file is {}, more than the {} read at most (docs/cli.md, \"Files and "
+                                 "safety\"); check that this is the right file",
+                                 size_text(f->size()), size_text(kRulesInput.max_bytes))};
 }
 
+using Sources = std::vector<std::pair<std::string, std::string>>;  // path, text
+
 // Compiles `.rules` files (and --set expressions) as one program; `profile` first when set.
-Result<vm::Program> compile(const std::string* profile, const std::vector<std::string>& files,
+Result<vm::Program> compile(const std::string* profile, const Sources& files,
                             const std::vector<std::pair<std::string, std::string>>& sets,
                             const std::string& stdlib_dir, Report& report) {
   FrontendOptions options;
@@ -37,7 +56,7 @@ Result<vm::Program> compile(const std::string* profile, const std::vector<std::s
   diag::Sink sink;
   ast::Program program;
   if (profile) load_source(program, kProfileName, *profile, options, sink);
-  for (const auto& f : files) load_file(program, f, options, sink);
+  for (const auto& [path, text] : files) load_source(program, path, text, options, sink);
   for (const auto& [k, v] : sets) add_set(program, k, v, sink);
   if (check(program, sink) && !sink.has_errors()) lint(program, sink);
   sink.finish({});
@@ -57,7 +76,7 @@ Result<vm::Program> compile(const std::string* profile, const std::vector<std::s
     }
   }
   if (sink.has_errors()) {
-    std::string what = !where.empty() ? where : !files.empty() ? files.front() : profile ? std::string("profile") : std::string("--set");
+    std::string what = !where.empty() ? where : !files.empty() ? files.front().first : profile ? std::string("profile") : std::string("--set");
     std::string more = sink.errors() > 1 ? fmt::format("\n({} errors in all; `rulec check` lists them)", sink.errors())
                                          : std::string();
     return Error{what, fmt::format("the rules have errors; nothing was sliced\n{}{}", first, more)};
@@ -80,7 +99,9 @@ Status check_profile(const RulesInput& in) {
     if (name.empty() || name == "none") continue;
     std::error_code ec;
     bool path = profile_is_path(name);
-    if (path ? fs::is_regular_file(name, ec) : fs::is_regular_file(dir / kind / (name + ".rules"), ec)) continue;
+    // A file, or a FIFO or device (read with the rules' size bound): anything but a folder.
+    if (path ? fs::exists(name, ec) && !fs::is_directory(name, ec) : fs::is_regular_file(dir / kind / (name + ".rules"), ec))
+      continue;
     std::vector<std::string> have;
     for (const auto& e : fs::directory_iterator(dir / kind, ec))
       if (e.path().extension() == ".rules") have.push_back(e.path().stem().string());
@@ -101,7 +122,7 @@ Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Repo
     if (Status s = check_profile(in); !s) return s.error();
   std::vector<vm::Program> programs;
   std::vector<std::string> names;
-  std::vector<std::string> pending;  // consecutive .rules files
+  Sources pending;  // consecutive .rules files
   const std::string profile = in.profile ? profile_source(in.printer, in.material) : std::string();
   bool profile_done = !in.profile;
   auto flush = [&](bool with_sets) -> Status {
@@ -111,16 +132,16 @@ Result<std::shared_ptr<const vm::RuleSet>> load_rules(const RulesInput& in, Repo
                      report);
     if (!p) return p.error();
     programs.push_back(std::move(*p));
-    names.push_back(!pending.empty() ? pending.back() : !profile_done ? "profile" : "--set");
+    names.push_back(!pending.empty() ? pending.back().first : !profile_done ? "profile" : "--set");
     pending.clear();
     profile_done = true;
     return ok_status();
   };
   for (const auto& f : in.files) {
-    auto bytes = read_all(f);
-    if (!bytes) return Error{f, "cannot read this rules file (missing, or not a file)"};
+    auto bytes = read_rules_or_bundle(f);
+    if (!bytes) return bytes.error();
     if (!vm::looks_like_bundle(*bytes)) {
-      pending.push_back(f);
+      pending.emplace_back(f, std::move(*bytes));
       continue;
     }
     if (Status s = flush(false); !s) return s.error();

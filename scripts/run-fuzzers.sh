@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target in BUILD/fuzz for SECONDS each, starting from its seed corpus
-# (fuzz/corpus/<name>/, or generated: fuzz/make_3mf_corpus.py). Fails if a target crashes, leaks,
+# (fuzz/corpus/<name>/, or generated: fuzz/make_3mf_corpus.py, fuzz/make_stl_corpus.py). Fails if a target crashes, leaks,
 # times out on one input or runs out of memory.
 set -euo pipefail
 build=${1:-build-fuzz}
@@ -22,8 +22,16 @@ for bin in "$build"/fuzz/fuzz_*; do
   [[ -d "$seeds" ]] && cp -r "$seeds"/. "$work/corpus/" 2>/dev/null || true
   # 3MF seeds are generated (no third-party file is committed).
   [[ $name == 3mf ]] && python3 "$root/fuzz/make_3mf_corpus.py" "$work/corpus"
-  echo "fuzz: $name for ${seconds}s"
-  if ! (cd "$work" && "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+  [[ $name == stl ]] && python3 "$root/fuzz/make_stl_corpus.py" "$work/corpus"
+  # Input size caps: STL up to 1 MiB, so that the large-file paths (welding in several chunks of
+  # 2048 triangles, long ASCII files) are reached; a whole slice stays small to stay fast.
+  case $name in
+    stl) max_len=1048576 ;;
+    slice) max_len=512 ;;
+    *) max_len=65536 ;;
+  esac
+  echo "fuzz: $name for ${seconds}s (inputs up to $max_len bytes)"
+  if ! (cd "$work" && "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=$max_len \
         -print_final_stats=0 corpus >"$work/log" 2>&1); then
     echo "fuzz: $name FAILED; last lines of its log:"; tail -40 "$work/log"
     mkdir -p "$build/fuzz-failures"; cp "$work"/crash-* "$work"/timeout-* "$work"/oom-* "$work"/leak-* \

@@ -32,8 +32,9 @@ class FillAngleScript {
  public:
   // Runs the script once (its top level) and checks it defines fill_angle(ctx). Errors name the
   // file: unreadable, a syntax error (file:line:col), an exception at load (with the traceback),
-  // no callable fill_angle, or a build without Python.
-  static Result<std::unique_ptr<FillAngleScript>> load(const std::string& path);
+  // no callable fill_angle, or a build without Python. `timeout_s` bounds the top level's run and
+  // each call of fill_angle (--script-timeout; CallWatch in call_watch.h).
+  static Result<std::unique_ptr<FillAngleScript>> load(const std::string& path, double timeout_s = 5);
   // True when this build embeds Python (CMake option TRANCHE_PYTHON with pybind11 found).
   static bool available();
 
@@ -42,7 +43,8 @@ class FillAngleScript {
   FillAngleScript& operator=(const FillAngleScript&) = delete;
 
   // Calls fill_angle(ctx): a finite int or float, in degrees. Errors carry the Python traceback;
-  // a wrong return type (str, bool, None...), NaN or infinity is an error naming the island.
+  // a wrong return type (str, bool, None...), NaN or infinity is an error naming the island, and
+  // so is a call that takes longer than the timeout (stopped with a TimeoutError in the script).
   Result<double> angle(const FillAngleContext& ctx);
 
   const std::string& path() const { return path_; }

@@ -1,16 +1,18 @@
 // FillAngleScript on embedded CPython (pybind11), or a stub that explains its absence when the
 // build has no Python (TRANCHE_PYTHON off, or pybind11/Python headers not found).
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
+#include "base/input_file.h"
 #include "geometry/fillangle/fill_angle.h"
 
 #if TRANCHE_HAVE_PYTHON
+#include <fmt/format.h>
 #include <pybind11/embed.h>
 
 #include <filesystem>
 #include <mutex>
+
+#include "geometry/fillangle/call_watch.h"
 #endif
 
 namespace tranche::geo {
@@ -21,14 +23,7 @@ std::string where_island(const FillAngleContext& c) {
   return "layer " + std::to_string(c.layer_index) + ", island " + std::to_string(c.island_index);
 }
 
-Result<std::string> read_script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path, "cannot open the fill-angle script"};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error{path, "cannot read the fill-angle script"};
-  return ss.str();
-}
+Result<std::string> read_script(const std::string& path) { return read_input(path, kScriptInput); }
 
 }  // namespace
 
@@ -137,10 +132,37 @@ py::list ring_to_list(const Ring& ring) {
   return l;
 }
 
+// "file:line:col: syntax error: ..." with the line and a caret, from Python's SyntaxError.
+Error syntax_error(py::error_already_set& e, const std::string& path) {
+  py::object v = e.value();
+  auto get_int = [&](const char* name) -> long {
+    py::object a = v.attr(name);
+    return a.is_none() ? 0 : a.cast<long>();
+  };
+  long line = get_int("lineno"), col = get_int("offset");
+  std::string msg = "syntax error: " + py::str(v.attr("msg")).cast<std::string>();
+  if (py::object text = v.attr("text"); !text.is_none()) {
+    std::string t = trim_newlines(text.cast<std::string>());
+    msg += "\n    " + t;
+    if (col > 0) msg += "\n    " + std::string(static_cast<size_t>(col - 1), ' ') + "^";
+  }
+  return Error{path + ":" + std::to_string(line) + (col > 0 ? ":" + std::to_string(col) : ""), msg};
+}
+
+std::string seconds_text(double s) { return fmt::format("{:g} s", s); }
+
+// What the watchdog prints if a call cannot be interrupted (CallWatch ends the process).
+std::string stuck_message(const std::string& path, const std::string& what, double timeout_s) {
+  return fmt::format("{}: {} did not return within {} (--script-timeout) and could not be interrupted (it is "
+                     "waiting inside C code, e.g. time.sleep); tranche stopped, nothing was written",
+                     path, what, seconds_text(timeout_s));
+}
+
 }  // namespace
 
 struct FillAngleScript::Impl {
   py::object globals, fn, namespace_type;
+  std::unique_ptr<CallWatch> watch;
   ~Impl() {
     py::gil_scoped_acquire gil;
     // Flush what the script printed: the interpreter is never finalized, which would do it.
@@ -158,12 +180,13 @@ struct FillAngleScript::Impl {
 
 bool FillAngleScript::available() { return true; }
 
-Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path) {
+Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path, double timeout_s) {
   auto source = read_script(path);
   if (!source) return source.error();
   ensure_interpreter();
   py::gil_scoped_acquire gil;
   auto impl = std::make_unique<Impl>();
+  impl->watch = std::make_unique<CallWatch>(timeout_s);
   try {
     // The script's folder first on sys.path, so that it can import modules beside it.
     std::string dir = std::filesystem::absolute(path).parent_path().string();
@@ -179,25 +202,19 @@ Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string
       code = py::module_::import("builtins").attr("compile")(py::bytes(*source), path, "exec");
     } catch (py::error_already_set& e) {
       if (!e.matches(PyExc_SyntaxError)) throw;
-      py::object v = e.value();
-      auto get_int = [&](const char* name) -> long {
-        py::object a = v.attr(name);
-        return a.is_none() ? 0 : a.cast<long>();
-      };
-      long line = get_int("lineno"), col = get_int("offset");
-      std::string msg = "syntax error: " + py::str(v.attr("msg")).cast<std::string>();
-      if (py::object text = v.attr("text"); !text.is_none()) {
-        std::string t = trim_newlines(text.cast<std::string>());
-        msg += "\n    " + t;
-        if (col > 0) msg += "\n    " + std::string(static_cast<size_t>(col - 1), ' ') + "^";
-      }
-      return Error{path + ":" + std::to_string(line) + (col > 0 ? ":" + std::to_string(col) : ""), msg};
+      return syntax_error(e, path);
     }
+    impl->watch->arm(stuck_message(path, "the script's top level", timeout_s));
     try {
       py::module_::import("builtins").attr("exec")(code, globals);
     } catch (py::error_already_set& e) {
+      if (impl->watch->disarm())
+        return Error{path, fmt::format("the script's top level took longer than {} (--script-timeout) and was "
+                                       "stopped; make it faster, or raise --script-timeout",
+                                       seconds_text(timeout_s))};
       return Error{script_location(e, path), "the script failed while loading:\n" + format_traceback(e)};
     }
+    impl->watch->disarm();
     if (!globals.contains("fill_angle"))
       return Error{
           path,
@@ -243,12 +260,21 @@ Result<double> FillAngleScript::angle(const FillAngleContext& c) {
     kw["holes"] = holes;
     py::object ctx = impl_->namespace_type(**kw);
     py::object r;
+    const double limit = impl_->watch->timeout_s();
+    impl_->watch->arm(stuck_message(path_, "fill_angle(ctx) on " + where, limit));
+    const auto timed_out = [&] {
+      return Error{path_, fmt::format("fill_angle(ctx) took longer than {} on {} (--script-timeout) and was "
+                                      "stopped; make the script faster, or raise --script-timeout",
+                                      seconds_text(limit), where)};
+    };
     try {
       r = impl_->fn(ctx);
     } catch (py::error_already_set& e) {
+      if (impl_->watch->disarm()) return timed_out();
       return Error{script_location(e, path_),
                    "fill_angle(ctx) raised an exception on " + where + ":\n" + format_traceback(e)};
     }
+    if (impl_->watch->disarm()) return timed_out();
     PyObject* o = r.ptr();
     double v = 0;
     bool number = false;
@@ -284,7 +310,7 @@ struct FillAngleScript::Impl {};
 
 bool FillAngleScript::available() { return false; }
 
-Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path) {
+Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path, double) {
   if (auto source = read_script(path); !source) return source.error();
   return Error{path,
                "this tranche was built without Python (CMake option TRANCHE_PYTHON=OFF, or pybind11 or the "

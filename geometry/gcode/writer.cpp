@@ -68,6 +68,11 @@ Result<std::unique_ptr<GcodeWriter>> GcodeWriter::open(const std::string& path, 
                                                        const ctx::Executors* executors, const GcodeInfo& info) {
   auto file = OutputFile::create(path, "the G-code");
   if (!file) return file.error();
+  if (info.max_bytes)
+    file->set_limit(info.max_bytes,
+                    fmt::format(" (--max-gcode-size {}: raise it if the printer takes such files, or check the "
+                                "rules' hooks and replacers, which may write more than intended)",
+                                info.max_bytes >> 20));
   std::unique_ptr<GcodeWriter> w(new GcodeWriter(std::move(*file), setup, executors));
   if (Status s = w->header(info); !s) return s.error();
   return w;

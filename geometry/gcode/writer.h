@@ -24,6 +24,7 @@ struct GcodeInfo {
   std::vector<std::pair<std::string, std::string>> sets;  // --set as given, for the header
   std::vector<std::string> notes;                         // more header lines (profile, rules files)
   std::string thumbnails;  // the thumbnail comment blocks (geometry/preview/thumbnails.h), or empty
+  uint64_t max_bytes = 0;  // the largest G-code written (--max-gcode-size); 0: no limit
 };
 
 struct GcodeSummary {

@@ -5,11 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "base/input_file.h"
 #include "geometry/io/svg_source.h"
 #include "geometry/io/svg_stack.h"
 #include "geometry/io/svg_walk.h"
@@ -235,12 +234,9 @@ Result<SvgModel> parse_svg(std::string_view text, const std::string& name, const
 }
 
 Result<SvgModel> load_svg(const std::string& path, const SvgImportOptions& options, Report& report) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path, "cannot open the file"};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error{path, "cannot read the file"};
-  return parse_svg(ss.str(), path, options, report);
+  auto text = read_input(path, kSvgInput);
+  if (!text) return text.error();
+  return parse_svg(*text, path, options, report);
 }
 
 }  // namespace tranche::geo

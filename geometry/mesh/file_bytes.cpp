@@ -1,66 +1,85 @@
 #include "geometry/mesh/file_bytes.h"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstring>
 #include <new>
-#include <system_error>
+
+#include "base/input_file.h"
 
 namespace tranche::geo {
 namespace {
 
-constexpr uint64_t kPipeLimit = uint64_t{1} << 30;  // bytes read from a pipe or device before giving up
+Error no_memory(const std::string& path, uint64_t bytes) {
+  return Error{path, fmt::format("not enough memory to read the model ({}); close other programs, or "
+                                 "simplify the model",
+                                 size_text(bytes))};
+}
 
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+Result<FileBytes> read_regular(InputFile& f, const HeadCheck& check_head) {
+  uint64_t size = f.size();
+  if (check_head) {
+    char head[kHeadBytes];
+    auto got = f.read_at(head, static_cast<size_t>(std::min<uint64_t>(size, kHeadBytes)), 0);
+    if (!got) return got.error();
+    auto want = check_head(std::string_view(head, *got), size);
+    if (!want) return want.error();
+    size = std::min(size, *want);
+  }
+  FileBytes b;
+  b.data.reset(new (std::nothrow) char[std::max<uint64_t>(size, 1)]);
+  if (!b.data) return no_memory(f.path(), size);
+  while (b.size < size) {
+    auto got = f.read(b.data.get() + b.size, static_cast<size_t>(size) - b.size);
+    if (!got) return got.error();
+    if (*got == 0) break;  // shrunk while being read: what is there
+    b.size += *got;
+  }
+  return b;
+}
+
+// A pipe, FIFO or device: chunks into a growing buffer, up to the model bound (InputFile).
+Result<FileBytes> read_stream(InputFile& f, const HeadCheck& check_head) {
+  FileBytes b;
+  size_t capacity = size_t{1} << 20;
+  b.data.reset(new (std::nothrow) char[capacity]);
+  if (!b.data) return no_memory(f.path(), capacity);
+  bool checked = !check_head;
+  uint64_t want = UINT64_MAX;
+  for (;;) {
+    if (b.size >= want) {  // what the header says is there: the rest of the stream is not read
+      b.size = static_cast<size_t>(want);
+      return b;
+    }
+    if (b.size == capacity) {
+      // One byte past the bound is enough for InputFile to refuse the stream.
+      const size_t grown = static_cast<size_t>(std::min<uint64_t>(uint64_t{capacity} * 2, kModelInput.max_bytes + 1));
+      auto bigger = std::unique_ptr<char[]>(new (std::nothrow) char[grown]);
+      if (!bigger) return no_memory(f.path(), grown);
+      std::memcpy(bigger.get(), b.data.get(), b.size);
+      b.data = std::move(bigger);
+      capacity = grown;
+    }
+    auto got = f.read(b.data.get() + b.size, capacity - b.size);
+    if (!got) return got.error();
+    b.size += *got;
+    if (!checked && (b.size >= kHeadBytes || *got == 0)) {
+      checked = true;
+      auto w = check_head(std::string_view(b.data.get(), std::min(b.size, kHeadBytes)), std::nullopt);
+      if (!w) return w.error();
+      want = *w;
+    }
+    if (*got == 0) return b;
+  }
+}
 
 }  // namespace
 
-Result<FileBytes> read_file_bytes(const std::string& path, const std::string& kind) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    const int err = errno;
-    return Error{path, fmt::format("cannot open the model: {}{}", errno_text(err),
-                                   err == ENOENT ? " — check the path" : "")};
-  }
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) return Error{path, "cannot read the model: " + errno_text(errno)};
-  if (S_ISDIR(st.st_mode)) return Error{path, "is a directory, not " + kind};
-  const bool regular = S_ISREG(st.st_mode);
-  FileBytes b;
-  size_t capacity = regular ? static_cast<size_t>(st.st_size) : size_t{1} << 20;
-  b.data.reset(new (std::nothrow) char[std::max<size_t>(capacity, 1)]);
-  if (!b.data) return Error{path, fmt::format("not enough memory to read the model ({} MB)", capacity >> 20)};
-  for (;;) {
-    if (b.size == capacity) {
-      if (regular) break;  // a file that grows while we read it is taken at its size when opened
-      if (capacity >= kPipeLimit) {
-        return Error{path, fmt::format("more than {} MiB from a pipe or device; save the model to a file",
-                                       kPipeLimit >> 20)};
-      }
-      auto bigger = std::unique_ptr<char[]>(new (std::nothrow) char[capacity * 2]);
-      if (!bigger) return Error{path, "not enough memory to read the model"};
-      std::memcpy(bigger.get(), b.data.get(), b.size);
-      b.data = std::move(bigger);
-      capacity *= 2;
-    }
-    const ssize_t n = ::read(fd, b.data.get() + b.size, capacity - b.size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return Error{path, "cannot read the model: " + errno_text(errno)};
-    }
-    if (n == 0) break;
-    b.size += static_cast<size_t>(n);
-  }
-  return b;
+Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head) {
+  auto f = InputFile::open(path, kModelInput);
+  if (!f) return f.error();
+  return f->regular() ? read_regular(*f, check_head) : read_stream(*f, check_head);
 }
 
 }  // namespace tranche::geo

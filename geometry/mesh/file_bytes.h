@@ -1,9 +1,15 @@
 // Reading a whole model file into memory, for the loaders (STL here, 3MF and OBJ in
-// geometry/plate): one read of a regular file, chunks from a pipe, clear errors for a missing
-// file, a directory, or a stream too large to buffer.
+// geometry/plate), through the one input reader (base/input_file.h): the model's size bound
+// (kModelInput), one read of a regular file, chunks from a pipe or device up to the same bound,
+// clear errors for a missing file or a directory. A header check sees the first bytes before the
+// rest is read, so a file refused from its header (a binary STL whose triangle count does not
+// fit its size) costs no memory.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,7 +23,12 @@ struct FileBytes {
   std::string_view view() const { return {data.get(), size}; }
 };
 
-// `kind` names what the file should be in the directory message ("an STL file", "a model file").
-Result<FileBytes> read_file_bytes(const std::string& path, const std::string& kind);
+// Sees the first bytes of a file (up to kHeadBytes; all of it when shorter) and its size (regular
+// files; nothing for a stream), and returns how many bytes are worth reading (the rest is left
+// unread; UINT64_MAX: all). An error stops the read.
+using HeadCheck = std::function<Result<uint64_t>(std::string_view head, std::optional<uint64_t> size)>;
+inline constexpr size_t kHeadBytes = 4096;
+
+Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head = {});
 
 }  // namespace tranche::geo

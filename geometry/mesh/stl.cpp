@@ -138,28 +138,38 @@ Result<Mesh> weld(stl::RawStl raw, const std::string& file, Report& report) {
   return mesh;
 }
 
+// Which parser a file goes to, from its first bytes (a kilobyte is enough) and its size.
+enum class Kind { Binary, Ascii, OtherText };
+
+Kind classify(std::string_view head, uint64_t size) {
+  // Binary when the header's count agrees with the size, even after "solid".
+  if (size >= 84 && head.size() >= 84 && 84 + 50 * uint64_t{stl::binary_count(head)} == size) return Kind::Binary;
+  // "solid" with NULs or control bytes is a binary header, unless the file is too short for one.
+  if (starts_with_solid_word(head) && (looks_like_text(head) || size < 84)) return Kind::Ascii;
+  if (looks_like_text(head)) return Kind::OtherText;
+  return Kind::Binary;
+}
+
+Error not_stl_text(std::string_view bytes, const std::string& name) {
+  return Error{name, fmt::format("not an STL file: it is text but does not start with 'solid' (it starts "
+                                 "with '{}'); export the model as STL",
+                                 excerpt(bytes))};
+}
+
 Result<Mesh> parse_bytes(std::string_view bytes, const std::string& name, Report& report) {
   if (bytes.empty()) {
     return Error{name,
                  "the file is empty (0 bytes); export the model again or check that it was copied "
                  "completely"};
   }
-  bool binary = false;
-  if (bytes.size() >= 84) {
-    uint32_t count = 0;
-    for (int i = 3; i >= 0; --i) count = count << 8 | static_cast<unsigned char>(bytes[80 + i]);
-    binary = 84 + 50 * uint64_t{count} == bytes.size();
-  }
-  // "solid" with NULs or control bytes is a binary header, unless the file is too short for one.
-  if (!binary && starts_with_solid_word(bytes) && (looks_like_text(bytes) || bytes.size() < 84)) {
-    Result<stl::RawStl> raw = stl::parse_ascii(bytes, name, report);
-    if (!raw) return raw.error();
-    return weld(std::move(raw.value()), name, report);
-  }
-  if (!binary && looks_like_text(bytes)) {
-    return Error{name, fmt::format("not an STL file: it is text but does not start with 'solid' (it starts "
-                                   "with '{}'); export the model as STL",
-                                   excerpt(bytes))};
+  switch (classify(bytes, bytes.size())) {
+    case Kind::Ascii: {
+      Result<stl::RawStl> raw = stl::parse_ascii(bytes, name, report);
+      if (!raw) return raw.error();
+      return weld(std::move(raw.value()), name, report);
+    }
+    case Kind::OtherText: return not_stl_text(bytes, name);
+    case Kind::Binary: break;
   }
   Result<stl::RawStl> raw = stl::parse_binary(bytes, name, report);
   if (!raw) return raw.error();
@@ -184,8 +194,35 @@ Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& 
   }
 }
 
+Result<uint64_t> check_stl_head(std::string_view head, std::optional<uint64_t> size, const std::string& name,
+                                Report& report) {
+  constexpr uint64_t kAll = UINT64_MAX;
+  if (head.empty()) return size.value_or(kAll);  // the parser says "empty"
+  const uint64_t count = stl::binary_count(head);
+  const uint64_t needed = 84 + 50 * count;
+  if (size) {
+    switch (classify(head, *size)) {
+      case Kind::Ascii: return *size;
+      case Kind::OtherText: return not_stl_text(head, name);
+      case Kind::Binary: break;
+    }
+    if (Status s = stl::check_binary_count(count, *size, name); !s) return s.error();
+    if (needed < *size) stl::warn_extra_data(count, *size, name, report);  // and those bytes are not read
+    return needed;
+  }
+  // A stream: its size is unknown, but a binary header is believed: no triangles is an error at
+  // once, and no more than its triangles are read (an endless stream of zeros is not read at all).
+  if (head.size() < 84 || starts_with_solid_word(head) || looks_like_text(head)) return kAll;
+  if (count == 0 || count > Welder::kMaxTriangles) {
+    if (Status s = stl::check_binary_count(count, needed, name); !s) return s.error();
+  }
+  return needed;
+}
+
 Result<Mesh> load_stl(const std::string& path, Report& report) {
-  Result<FileBytes> bytes = read_file_bytes(path, "an STL file");
+  Result<FileBytes> bytes = read_file_bytes(path, [&](std::string_view head, std::optional<uint64_t> size) {
+    return check_stl_head(head, size, path, report);
+  });
   if (!bytes) return bytes.error();
   return parse_stl(bytes->view(), path, report);
 }

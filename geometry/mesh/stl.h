@@ -1,6 +1,8 @@
 // STL input (binary and ASCII, auto-detected) and binary output.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,6 +20,15 @@ Result<Mesh> load_stl(const std::string& path, Report& report);
 
 // Same, from bytes already in memory; `name` is used in messages (fuzzing, tests).
 Result<Mesh> parse_stl(std::string_view bytes, const std::string& name, Report& report);
+
+// The checks that need only a file's first bytes (up to 4 KiB) and its size, made before it is
+// read whole: a binary STL's triangle count against the size (a 2 GB file whose header says 0
+// triangles, or more than it holds, is refused from its header), text that is no STL. Returns how
+// many bytes are worth reading: a binary STL's triangles and no more (the bytes after them are
+// only counted, in the stl-extra-data warning it adds to `report`). `size` is unknown for a
+// stream: then a binary header with no triangles is refused, and its triangles bound the read.
+Result<uint64_t> check_stl_head(std::string_view head, std::optional<uint64_t> size, const std::string& name,
+                                Report& report);
 
 // Writes a binary STL (normals computed from the triangles).
 Status write_stl_binary(const std::string& path, const Mesh& mesh);

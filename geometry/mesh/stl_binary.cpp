@@ -49,15 +49,13 @@ std::string header_name(std::string_view header) {
 
 }  // namespace
 
-Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Report& report) {
-  const uint64_t size = bytes.size();
+Status check_binary_count(uint64_t count, uint64_t size, const std::string& file) {
   if (size < kHeader) {
     return Error{file, fmt::format("file is {} bytes: too short for a binary STL (84-byte header and count) "
                                    "and it does not start with 'solid', so it is not an ASCII STL either; "
                                    "check that this is the model file and that it was copied completely",
                                    size)};
   }
-  const uint64_t count = read_u32(bytes.data() + 80);
   const uint64_t complete = (size - kHeader) / kRecord;
   const uint64_t needed = kHeader + kRecord * count;
   if (count == 0) {
@@ -77,14 +75,26 @@ Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Rep
     return Error{file, fmt::format("header says {} triangles; at most {} are supported — simplify the model",
                                    count, Welder::kMaxTriangles)};
   }
-  if (needed < size) {
-    const uint64_t more = complete - count;
-    report.warn("stl-extra-data", file,
-                fmt::format("{} bytes after the last of the header's {} triangles are ignored{}; if parts of "
-                            "the model are missing, its triangle count is wrong — re-export it",
-                            size - needed, count,
-                            more > 0 ? fmt::format(" (room for {} more)", more) : std::string()));
-  }
+  return ok_status();
+}
+
+void warn_extra_data(uint64_t count, uint64_t size, const std::string& file, Report& report) {
+  const uint64_t needed = kHeader + kRecord * count;
+  const uint64_t more = (size - kHeader) / kRecord - count;
+  report.warn("stl-extra-data", file,
+              fmt::format("{} bytes after the last of the header's {} triangles are ignored{}; if parts of "
+                          "the model are missing, its triangle count is wrong — re-export it",
+                          size - needed, count, more > 0 ? fmt::format(" (room for {} more)", more) : std::string()));
+}
+
+uint32_t binary_count(std::string_view bytes) { return bytes.size() < kHeader ? 0 : read_u32(bytes.data() + 80); }
+
+Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Report& report) {
+  const uint64_t size = bytes.size();
+  const uint64_t count = binary_count(bytes);
+  if (Status s = check_binary_count(count, size, file); !s) return s.error();
+  const uint64_t needed = kHeader + kRecord * count;
+  if (needed < size) warn_extra_data(count, size, file, report);
 
   RawStl raw;
   raw.name = header_name(bytes.substr(0, 80));

@@ -37,6 +37,14 @@ void decode_record(const char* record, Facet& out);
 Result<RawStl> parse_binary(std::string_view bytes, const std::string& file, Report& report);
 Result<RawStl> parse_ascii(std::string_view bytes, const std::string& file, Report& report);
 
+// The errors of a binary STL's triangle count against the file's size (too short, 0 triangles,
+// more than the file holds, more than the welder takes), from the header alone.
+Status check_binary_count(uint64_t count, uint64_t size, const std::string& file);
+// The warning for bytes after the header's `count` triangles in a file of `size` bytes.
+void warn_extra_data(uint64_t count, uint64_t size, const std::string& file, Report& report);
+// The header's triangle count (0 when there is no full header).
+uint32_t binary_count(std::string_view bytes);
+
 // "model.stl:12" / "model.stl, triangle 40" (triangles are numbered from 1).
 std::string at_line(const std::string& file, uint64_t line);
 std::string at_triangle(const std::string& file, uint64_t index0);

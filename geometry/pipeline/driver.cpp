@@ -5,9 +5,12 @@
 #include <tbb/info.h>
 #include <tbb/parallel_pipeline.h>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
+#include <new>
 
+#include "base/memory.h"
 #include "geometry/pipeline/preview_adapter.h"
 #include "geometry/plan/layer_loop.h"
 #include "geometry/polygon/decompose.h"
@@ -43,6 +46,10 @@ std::vector<std::vector<geo::Cell>> exact_cells(const exports::ExportLayer& e, R
                               angle, c.error().message));
   }
   return cells;
+}
+
+Error layer_out_of_memory(int layer) {
+  return out_of_memory("", fmt::format("slicing layer {}", layer));
 }
 
 // Plans layer i and formats everything the outputs need from it (runs in parallel).
@@ -133,7 +140,14 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
   auto work = [&](int i) {
     auto item = std::make_shared<Item>();
     item->index = i;
-    if (!failed.load()) make_item(*item, setup, cascade, outputs);
+    try {
+      if (!failed.load()) make_item(*item, setup, cascade, outputs);
+    } catch (const std::bad_alloc&) {  // this layer's plan: the rest of the run is stopped cleanly
+      item.reset();  // frees what the layer had made
+      item = std::make_shared<Item>();
+      item->index = i;
+      item->status = layer_out_of_memory(i);
+    }
     return item;
   };
   auto sink = [&](std::shared_ptr<Item> item) {
@@ -143,7 +157,13 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
     if (s && outputs.gcode) s = check_bed(*item, setup, report, warned_off_bed);
     if (s && outputs.gcode && outputs.object_change_z > 0 && written == 0 && item->text.any_move)
       s = outputs.gcode->object_change(item->text.first, outputs.object_change_z);
-    if (s) s = write_item(*item, outputs);
+    if (s) {
+      try {
+        s = write_item(*item, outputs);
+      } catch (const std::bad_alloc&) {
+        s = layer_out_of_memory(item->index);
+      }
+    }
     if (!s) {
       first_error = s;
       failed = true;
@@ -152,9 +172,14 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
     ++written;
     if (progress) progress(written);
   };
-  tbb::parallel_pipeline(tokens, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order, source) &
-                                     tbb::make_filter<int, std::shared_ptr<Item>>(tbb::filter_mode::parallel, work) &
-                                     tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order, sink));
+  try {
+    tbb::parallel_pipeline(tokens,
+                           tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order, source) &
+                               tbb::make_filter<int, std::shared_ptr<Item>>(tbb::filter_mode::parallel, work) &
+                               tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order, sink));
+  } catch (const std::bad_alloc&) {  // the pipeline's own tokens and tasks
+    return layer_out_of_memory(std::min(next.load(), n - 1));
+  }
   return first_error;
 }
 

@@ -4,9 +4,14 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <new>
+#include <stdexcept>
+#include <string_view>
 
 #include <fmt/format.h>
 
+#include "base/memory.h"
+#include "base/run_files.h"
 #include "geometry/fillangle/fill_angle.h"
 #include "geometry/io/svg_import.h"
 #include "geometry/mesh/stl.h"
@@ -163,6 +168,7 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
     if (!pictures) return pictures.error();
     info.thumbnails = std::move(*pictures);
     info.model_name = o.model;
+    info.max_bytes = o.max_gcode_mb << 20;
     info.sets = o.sets;
     if (o.profile)
       info.notes.push_back(fmt::format("profile: stdlib defaults, printer {}, material {}", o.printer, o.material));
@@ -177,6 +183,9 @@ Result<Outputs> open_outputs(const SliceOptions& o, const setup::PrintSetup& set
     if (!s) return s.error();
     out.svg = std::move(*s);
   }
+  // The preview is written whole at the end: its file is checked now, before any output is.
+  if (!o.export_preview.empty())
+    if (Status s = RunFiles::claim_output(o.export_preview, "the preview"); !s) return s.error();
   if (!o.export_preview.empty())
     out.preview = std::make_unique<preview::PreviewEncoder>(static_cast<float>(setup.print_props[schema::PropId::BedSizeX]),
                                                             static_cast<float>(setup.print_props[schema::PropId::BedSizeY]),
@@ -334,9 +343,10 @@ Status check_options(const SliceOptions& options) {
   return ok_status();
 }
 
-Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rs,
-                               Report& report) {
-  if (Status s = check_options(options); !s) return s.error();
+namespace {
+
+Result<SliceSummary> run_slice_unguarded(const SliceOptions& options, const plate::Plate* plate,
+                                         const vm::RuleSet* rs, Report& report) {
   // A --set of a property to a plain value (`0.2`, `20%`, `rear`) is an override, the last layer
   // of the cascade; the others (expressions, params) were compiled into `rs` by the caller.
   std::vector<std::pair<std::string, std::string>> plain;
@@ -349,7 +359,7 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* 
 
   std::unique_ptr<geo::FillAngleScript> script;  // loaded first: a broken script fails before slicing
   if (!options.fill_angle_script.empty()) {
-    auto s = geo::FillAngleScript::load(options.fill_angle_script);
+    auto s = geo::FillAngleScript::load(options.fill_angle_script, options.script_timeout_s);
     if (!s) return s.error();
     script = std::move(*s);
   }
@@ -376,6 +386,24 @@ Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* 
   if (!sliced) return sliced.error();
   summary.triangles = sliced->triangles;
   return finish(*sliced, summary, script.get(), options, progress, **cascade, rs, report);
+}
+
+}  // namespace
+
+Result<SliceSummary> run_slice(const SliceOptions& options, const plate::Plate* plate, const vm::RuleSet* rs,
+                               Report& report) {
+  if (Status s = check_options(options); !s) return s.error();
+  // Out of memory anywhere (slicing, islands, the print setup; the layer loop names its layer): an
+  // error like any other. The outputs are not committed, so nothing is written.
+  try {
+    return run_slice_unguarded(options, plate, rs, report);
+  } catch (const std::bad_alloc&) {
+    return out_of_memory("", "slicing");
+  } catch (const std::runtime_error& e) {
+    // TBB starts its worker threads on demand; with the address space used up, it cannot.
+    if (std::string_view(e.what()).find("pthread_create") == std::string_view::npos) throw;
+    return out_of_memory("", "starting the slicing threads");
+  }
 }
 
 }  // namespace tranche::pipeline

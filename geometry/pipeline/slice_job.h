@@ -3,6 +3,7 @@
 // the rules already compiled (compiler/load_rules.h; apps/slice_command.h does both).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,6 +17,8 @@
 namespace tranche::pipeline {
 
 enum class OverlapMode { Additive, Boolean, Subtractive };
+
+inline constexpr uint64_t kDefaultMaxGcodeMb = 2048;  // 2 GiB: docs/cli.md, "Files and safety"
 
 struct SliceOptions {
   std::string model;                        // STL or SVG path
@@ -41,6 +44,8 @@ struct SliceOptions {
   bool strict = false;                      // --strict: coherence warnings become errors
   bool allow_off_bed = false;               // --allow-off-bed: a move off the bed is a warning, not an error
   bool quiet = false;                       // --quiet: no progress on stderr
+  uint64_t max_gcode_mb = kDefaultMaxGcodeMb;  // --max-gcode-size: the largest G-code written (MiB; 0: none)
+  double script_timeout_s = 5;              // --script-timeout: the longest a fill_angle(ctx) call may take
 };
 
 // What a finished run reports to the user.

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <new>
+#include <optional>
+#include <string_view>
 
 #include "geometry/mesh/file_bytes.h"
 #include "geometry/mesh/stl.h"
@@ -71,7 +73,11 @@ Result<std::vector<Object>> parse_model_file(std::string_view bytes, const std::
 }
 
 Result<std::vector<Object>> load_model_file(const std::string& path, Report& report) {
-  auto bytes = geo::read_file_bytes(path, "a model file");
+  // An STL refused from its header (a triangle count its size cannot hold) is never read whole.
+  auto bytes = geo::read_file_bytes(path, [&](std::string_view head, std::optional<uint64_t> size) {
+    if (detect_format(head, size.value_or(head.size())).format != Format::Stl) return Result<uint64_t>(UINT64_MAX);
+    return geo::check_stl_head(head, size, path, report);
+  });
   if (!bytes) return bytes.error();
   if (bytes->size == 0)
     return Error{path, "the file is empty (0 bytes); export the model again or check that it was copied completely"};

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "base/fnv.h"
+
 namespace tranche::schema {
 namespace {
 
@@ -138,10 +140,10 @@ std::string_view unit_name(Unit u) {
 Stage finest_stage(PropId id) { return id == PropId::FillAngle ? Stage::Cell : property(id).stage; }
 
 uint64_t schema_hash() {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  uint64_t h = kFnv1a64Basis;
   auto mix = [&h](std::string_view s) {
-    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ 0xff) * 1099511628211ull;
+    h = fnv1a64(s, h);
+    h = fnv1a64("\xff", h);  // a separator no name contains
   };
   auto mixn = [&mix](int v) { mix(std::to_string(v)); };
   for (const auto& f : kFields) {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "base/fnv.h"
 #include "runtime/vm/verify.h"
 
 namespace tranche::vm {
@@ -13,12 +14,6 @@ namespace {
 
 enum Section : uint32_t { kStrings = 1, kConsts, kCode, kChunks, kRules, kSlots, kOrder, kDebug };
 constexpr uint32_t kSectionCount = 8;
-
-uint64_t fnv1a(std::string_view bytes) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 class Writer {
  public:
@@ -214,7 +209,7 @@ Candidates read_candidates(Reader& r) {
 
 }  // namespace
 
-uint64_t bundle_checksum(std::string_view bundle) { return bundle.size() < 32 ? 0 : fnv1a(bundle.substr(32)); }
+uint64_t bundle_checksum(std::string_view bundle) { return bundle.size() < 32 ? 0 : fnv1a64(bundle.substr(32)); }
 
 bool looks_like_bundle(std::string_view bytes) {
   return bytes.size() >= sizeof kBundleMagic && std::memcmp(bytes.data(), kBundleMagic, sizeof kBundleMagic) == 0;
@@ -366,6 +361,9 @@ Result<Program> read_bundle(std::string_view bytes, const std::string& name) {
   uint32_t n = h.u32();
   uint32_t size = h.u32();
   if (!h.ok()) return bad("the bundle is truncated");
+  if (version < kBundleVersion)
+    return bad(fmt::format("this bundle has format version {}, from an older tranche (this one reads version {})",
+                           version, kBundleVersion));
   if (version != kBundleVersion)
     return bad(fmt::format("bundle format version {} is not the one this tranche reads ({})", version, kBundleVersion));
   if (hash != schema::schema_hash())

@@ -39,7 +39,9 @@
 namespace tranche::vm {
 
 inline constexpr char kBundleMagic[8] = {'T', 'R', 'N', 'C', 'H', 'R', 'U', 'L'};
-inline constexpr uint32_t kBundleVersion = 1;
+// Version 2: the checksum is FNV-1a 64 with the reference offset basis (version 1 used a basis
+// missing its last digit), and the schema hash changed with it.
+inline constexpr uint32_t kBundleVersion = 2;
 inline constexpr size_t kMaxBundleBytes = 256u << 20;
 
 // The bundle's bytes. `with_debug` false drops the debug section.

@@ -284,6 +284,12 @@ TEST_CASE("command line: every spelling of tranche slice, old and new") {
   CHECK(parse("--output x.gcode --quiet m.stl")->slice.output_gcode == "x.gcode");
   CHECK(parse("m.stl -o a -o b")->slice.output_gcode == "b");  // the last one wins, as before
   CHECK(parse("-h")->help);
+  auto limits = parse("m.stl --max-memory 500 --max-gcode-size 10 --script-timeout 0.5");
+  REQUIRE_MESSAGE(limits.ok(), limits.error().to_string());
+  CHECK(limits->max_memory_mb == 500);
+  CHECK(limits->slice.max_gcode_mb == 10);
+  CHECK(limits->slice.script_timeout_s == 0.5);
+  CHECK(parse("m.stl")->slice.max_gcode_mb == 2048);
 
   auto p = parse("a.stl b.3mf c.obj --copies 2 --scale lid=1,1,2 --scale 50% --rotate -90 --rotate-x lid=90 "
                  "--rotate-y 2=45 --lay-flat --scale-to-fit --move -10,5 --center lid=100,80 --arrange --spacing 3 "
@@ -321,6 +327,12 @@ TEST_CASE("command line: usage errors say what an option needs") {
   CHECK(error("m.stl --overlap sideways") == "--overlap must be additive, boolean or subtractive, not 'sideways'");
   CHECK(error("m.stl --svg-layers 0") == "--svg-layers needs a positive number, not '0'");
   CHECK(error("m.stl --svg-layers 2.5") == "--svg-layers needs a whole number of layers, not '2.5'");
+  CHECK(error("m.stl --svg-layers 1000000000") == "--svg-layers takes at most 100000 layers, not '1000000000'");
+  CHECK(error("m.stl --svg-height 1e9") == "--svg-height takes at most 100000 mm, not '1e9'");
+  CHECK(error("m.stl --max-gcode-size -1") == "--max-gcode-size needs a whole number of MB, not '-1'");
+  CHECK(error("m.stl --max-memory 10") == "--max-memory takes 64 to 1073741824 MB, not '10'");
+  CHECK(error("m.stl --max-memory lots") == "--max-memory needs a whole number of MB, not 'lots'");
+  CHECK(error("m.stl --script-timeout 0") == "--script-timeout needs a number of seconds from 0.001 to 86400, not '0'");
   CHECK(has(error("m.stl --scale 0"), "--scale factors must be positive"));
   CHECK(has(error("m.stl --rotate quarter"), "--rotate needs an angle in degrees"));
   CHECK(has(error("m.stl --move 10"), "--move needs X,Y in mm"));

@@ -304,7 +304,8 @@ SCENARIO("rules: bad rules and run-time errors stop the slice with the rule's lo
   CHECK(dmg.result.error().where == damaged);
   auto missing = run(dir, "missing", box, {(dir / "nope.rules").string()});
   REQUIRE_FALSE(missing.result.ok());
-  CHECK(missing.result.error().message.find("cannot read") != std::string::npos);
+  CHECK(missing.result.error().message.find("cannot open the rules file: No such file or directory") !=
+        std::string::npos);
 }
 
 SCENARIO("rules: fill_angle rules win over the Python script, which wins over the default") {

@@ -1,6 +1,7 @@
 // The --fill-angle-script hook: loading, calling, the context a script sees, and every error.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <thread>
@@ -317,4 +318,42 @@ TEST_CASE("fill-angle script: vertices in the middle of straight edges are left 
   auto n = (*script)->angle(ctx);
   REQUIRE(n.ok());
   CHECK(*n == 4);
+}
+
+TEST_CASE("fill-angle script: a call that runs too long is stopped, naming the layer and island") {
+  if (!geo::FillAngleScript::available()) return;
+  tranche::test::TempDir dir("fill-angle-timeout");
+  auto script = geo::FillAngleScript::load(
+      write(dir, "slow.py", "def fill_angle(ctx):\n    if ctx.layer_index == 2:\n        while True: pass\n    return 10\n"),
+      0.3);
+  REQUIRE(script.ok());
+  auto ls = layers();
+  geo::FillAngleContext c;
+  c.layer_count = 3;
+  c.layer_index = 0;
+  c.shape = &ls[0].islands[0].shape;
+  auto fast = (*script)->angle(c);
+  REQUIRE(fast.ok());
+  CHECK(*fast == 10);
+  c.layer_index = 2;
+  c.island_index = 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto slow = (*script)->angle(c);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  REQUIRE_FALSE(slow.ok());
+  CHECK(contains(slow.error().message, "took longer than 0.3 s on layer 2, island 0 (--script-timeout)"));
+  CHECK(s < 2);
+  // The script stays usable: the next call works, and no TimeoutError is left pending.
+  c.layer_index = 1;
+  auto after = (*script)->angle(c);
+  REQUIRE_MESSAGE(after.ok(), after.error().to_string());
+  CHECK(*after == 10);
+}
+
+TEST_CASE("fill-angle script: a top level that runs too long is stopped") {
+  if (!geo::FillAngleScript::available()) return;
+  tranche::test::TempDir dir("fill-angle-timeout");
+  auto script = geo::FillAngleScript::load(write(dir, "loop.py", "while True:\n    pass\n"), 0.2);
+  REQUIRE_FALSE(script.ok());
+  CHECK(contains(script.error().message, "the script's top level took longer than 0.2 s"));
 }

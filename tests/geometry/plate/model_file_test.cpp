@@ -109,7 +109,7 @@ TEST_CASE("load_model_file: a 3MF named .stl loads; other files say what they ar
   std::filesystem::create_directories(dir / "folder.3mf");
   auto folder = tranche::plate::load_model_file((dir / "folder.3mf").string(), report);
   REQUIRE_FALSE(folder.ok());
-  CHECK(has(folder.error().message, "is a directory, not a model file"));
+  CHECK(has(folder.error().message, "is a directory, not the model"));
 
   write(dir / "drawing.stl", "<svg xmlns=\"http://www.w3.org/2000/svg\"/>");
   auto svg = tranche::plate::load_model_file((dir / "drawing.stl").string(), report);

@@ -94,6 +94,23 @@ TEST_CASE("bundle: a bundle for another schema is refused") {
   CHECK(r.error().message.find("another version of the context") != std::string::npos);
 }
 
+TEST_CASE("bundle: the checksum is FNV-1a 64 as docs/bundles.md documents it; version 1 bundles are refused") {
+  std::string a = vm::write_bundle(test::program(kRules));
+  // The reference FNV-1a 64, written out here rather than shared with the reader.
+  uint64_t h = 14695981039346656037ull;
+  for (size_t i = 32; i < a.size(); ++i) h = (h ^ static_cast<unsigned char>(a[i])) * 1099511628211ull;
+  uint64_t stored = 0;
+  for (int i = 7; i >= 0; --i) stored = stored << 8 | static_cast<unsigned char>(a[24 + static_cast<size_t>(i)]);
+  CHECK(stored == h);
+  CHECK(vm::kBundleVersion == 2);
+  std::string old = a;
+  old[8] = 1;  // a version 1 bundle (its checksum fixed, as a valid old bundle would have it)
+  auto r = vm::read_bundle(old, "old.bundle");
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().message.find("older tranche") != std::string::npos);
+  CHECK(r.error().message.find("rebuild it with `rulec build`") != std::string::npos);
+}
+
 TEST_CASE("verify: operands, jumps, terminators and opcode classes are checked before anything runs") {
   using vm::Op;
   CHECK(vm::verify(tiny({I(Op::LoadK, 0, 0), I(Op::Ret, 0)})).ok());
