@@ -36,6 +36,7 @@ struct IslandSupport {
   int interface_layers = 2;
   bool bed_only = false;
   double brim_mm = 0;
+  double reach = 0;  // mm: how far the island leans out over the layer below, unsupported
   Rings overhang;
 };
 
@@ -100,6 +101,7 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
     auto it = grown.find(spec.reach_mm);
     if (it == grown.end()) it = grown.emplace(spec.reach_mm, toolpath::offset(nb.layer(-1), spec.reach_mm)).first;
     d.overhang = support::overhang(ip.shape, it->second, nb.layer(-1), spec);
+    d.reach = spec.reach_mm;
   }
   return ok_status();
 }
@@ -180,6 +182,9 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
         continue;
       }
       const int gap = static_cast<int>(L) - 1 - k;
+      // Grown by the reach inside the island: the slivers of a slope, a reach apart from layer to
+      // layer, then overlap into one band (support/support.h).
+      d.overhang = toolpath::intersection(toolpath::offset(d.overhang, d.reach + 0.05), shape_of(S.layers[L].islands[i]));
       if (d.style == schema::Support::Normal) {
         c.normal.bottom_gap_layers = std::max(c.normal.bottom_gap_layers, gap);
         c.normal.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});

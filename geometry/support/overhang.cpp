@@ -45,16 +45,21 @@ double length_inside(const Rings& outline, const Rings& region) {
   return len;
 }
 
-bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double hold_mm) {
+bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double reach_mm, double hold_mm) {
   if (max_bridge_mm <= 0 || below.empty()) return false;
   const Rings zone = toolpath::offset(piece, hold_mm);
-  const Rings holds = toolpath::intersection(zone, toolpath::near(below, toolpath::bbox(zone)));
+  const Rings near_below = toolpath::near(below, toolpath::bbox(zone));
+  const Rings holds = toolpath::intersection(zone, near_below);
   if (toolpath::area_mm2(holds) <= 0) return false;
-  // Two-sided: two separate holds, or a hold along at least half the outline (a ring all round).
+  // Two-sided: two separate holds, or one hold all round its outer outline (a ceiling on four
+  // walls: the outline runs a reach from the walls). Holes do not count: a slope's sliver round a
+  // funnel is held along its inner edge only, its outer edge further out than the reach.
   if (components(holds).size() < 2) {
+    Rings outers;
     double outline = 0;
-    for (const geo::Ring& r : piece) outline += geo::length_mm(r);
-    if (length_inside(piece, toolpath::offset(holds, hold_mm)) < 0.5 * outline) return false;
+    for (const geo::Ring& r : piece)
+      if (ClipperLib::Orientation(r)) outers.push_back(r), outline += geo::length_mm(r);
+    if (length_inside(outers, toolpath::offset(near_below, reach_mm + 0.01)) < 0.75 * outline) return false;
   }
   // Short enough: every point within half a span of a hold.
   const Rings far = toolpath::difference(piece, toolpath::offset(holds, 0.5 * max_bridge_mm + hold_mm));
@@ -69,7 +74,7 @@ Rings overhang(const Rings& island, const Rings& below_reach, const Rings& below
   const double speck = 0.25 * std::numbers::pi * spec.nozzle_mm * spec.nozzle_mm;
   for (Rings& piece : components(raw)) {
     if (toolpath::area_mm2(piece) < speck) continue;
-    if (is_bridge(piece, below, spec.max_bridge_mm, spec.reach_mm + 0.5 * spec.nozzle_mm)) continue;
+    if (is_bridge(piece, below, spec.max_bridge_mm, spec.reach_mm, spec.reach_mm + 0.5 * spec.nozzle_mm)) continue;
     out.insert(out.end(), piece.begin(), piece.end());
   }
   return out;

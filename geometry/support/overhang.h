@@ -28,11 +28,13 @@ std::vector<geo::Rings> components(const geo::Rings& region);
 // Length (mm) of the closed rings of `outline` that lies inside `region`.
 double length_inside(const geo::Rings& outline, const geo::Rings& region);
 
-// Whether `piece` (one connected overhang) is a bridge over the material `below`: held along at
-// least half of its outline, or by two separate holds, and no point of it further than
-// max_bridge/2 from a hold. `hold_mm`: how far outside the piece a hold may lie (the reach plus
-// a little: the piece ends where the reach does).
-bool is_bridge(const geo::Rings& piece, const geo::Rings& below, double max_bridge_mm, double hold_mm);
+// Whether `piece` (one connected overhang) is a bridge over the material `below`: held by two
+// separate holds, or by one along three quarters of its outer outline (a ceiling), and no point
+// of it further than max_bridge/2 from a hold. `reach_mm`: the overhang's reach (the piece ends
+// that far from `below`); `hold_mm`: how far outside the piece a hold may lie (the reach plus a
+// little).
+bool is_bridge(const geo::Rings& piece, const geo::Rings& below, double max_bridge_mm, double reach_mm,
+               double hold_mm);
 
 // What of `island` needs support: the island minus `below_reach` (the layer below grown by the
 // reach), without slivers, specks and bridges over `below`.

@@ -45,7 +45,7 @@ ProjectResult project(const ProjectInput& in) {
     const Rings part = toolpath::material(in.layers[k]);
     if (k < in.contacts.size())
       for (const Contact& c : in.contacts[k]) {
-        Rings r = c.region;
+        Rings r = toolpath::simplify(c.region, kSimplify);  // once: slope slivers carry arcs of the reach
         if (c.bed_only) {
           Rings kept = toolpath::difference(r, foot[k]);
           res.blocked_mm2 += std::max(0.0, toolpath::area_mm2(r) - toolpath::area_mm2(kept));
@@ -64,9 +64,8 @@ ProjectResult project(const ProjectInput& in) {
       res.off_bed_mm2 += std::max(0.0, toolpath::area_mm2(column) - toolpath::area_mm2(on));
       column = std::move(on);
     }
-    // Closed and simplified for printing only: done on the column itself, it would erode it layer
-    // after layer.
-    Rings printed = toolpath::difference(toolpath::simplify(closing(column, 0.5 * in.merge_mm), kSimplify),
+    // Simplified for printing only: done on the column itself, it would erode it layer after layer.
+    Rings printed = toolpath::difference(toolpath::simplify(column, kSimplify),
                                          k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : part);
     for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
       printed = toolpath::difference(printed, toolpath::material(in.layers[k - static_cast<size_t>(g)]));

@@ -16,7 +16,9 @@ namespace tranche::support {
 // An overhang asking for support, placed on the layer where the support's top is printed (the
 // overhang's layer minus the z gap).
 struct Contact {
-  geo::Rings region;         // model units
+  // Model units. A slope's overhangs are slivers a reach apart on successive layers: grown by the
+  // reach inside their island (plan/support_pass), they overlap into one band of column.
+  geo::Rings region;
   int interface_layers = 2;  // dense layers at the top of the column under it
   bool bed_only = false;     // only where no part lies below (support_on_bed_only)
 };
