@@ -131,8 +131,28 @@ int main(int argc, char** argv) {
     cut.transform(1.0, {0, 0, -base});
     return write(argv[3], cmd == "bunny" ? cut : capped(cut));
   }
+  // Overhangs of every kind, for bench_support.sh.
+  if (cmd == "mushroom" && argc == 3) {  // a cap on a stem
+    geo::Mesh m = geo::box({8, 8, 15}, {11, 11, 0});
+    geo::append(m, geo::box({30, 30, 3}, {0, 0, 15}));
+    return write(argv[2], m);
+  }
+  if (cmd == "ledge" && argc == 3) {  // a bracket: a shelf out of a wall
+    geo::Mesh m = geo::box({30, 5, 25}, {0, 0, 0});
+    geo::append(m, geo::box({30, 15, 3}, {0, 5, 20}));
+    return write(argv[2], m);
+  }
+  if (cmd == "span" && argc == 3) {  // a slab on two pillars 30 mm apart: too long to bridge
+    geo::Mesh m = geo::box({5, 10, 15}, {0, 0, 0});
+    geo::append(m, geo::box({5, 10, 15}, {35, 0, 0}));
+    geo::append(m, geo::box({40, 10, 3}, {0, 0, 15}));
+    return write(argv[2], m);
+  }
+  if (cmd == "slope" && argc == 3)  // a funnel: walls 53° from vertical
+    return write(argv[2], geo::cone(5, 25, 15, 128));
   std::fprintf(
       stderr,
-      "usage: bench_models plate OUT.stl | torus OUT.stl [M N] | bunny|bunny_closed IN.stl OUT.stl\n");
+      "usage: bench_models plate OUT.stl | torus OUT.stl [M N] | bunny|bunny_closed IN.stl OUT.stl | "
+      "mushroom|ledge|span|slope OUT.stl\n");
   return 2;
 }

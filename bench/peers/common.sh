@@ -42,6 +42,8 @@ bench_models() {
   if ! fresh "$d/stanford_bunny_closed.stl" && [[ -f "$stl_models/objects/bunny.bin.stl" ]]; then
     "$BENCH_MODELS" bunny_closed "$stl_models/objects/bunny.bin.stl" "$d/stanford_bunny_closed.stl" >/dev/null
   fi
+  local m
+  for m in mushroom ledge span slope; do fresh "$d/$m.stl" || "$BENCH_MODELS" $m "$d/$m.stl" >/dev/null; done
   local shapes=/usr/share/PrusaSlicer/shapes
   local name path
   while read -r name path; do
@@ -59,6 +61,10 @@ stanford_bunny $d/stanford_bunny.stl
 stanford_bunny_closed $d/stanford_bunny_closed.stl
 plate_holes $d/plate_holes.stl
 torus819k $d/torus819k.stl
+mushroom $d/mushroom.stl
+ledge $d/ledge.stl
+span $d/span.stl
+slope $d/slope.stl
 EOM
 }
 

@@ -12,6 +12,10 @@ ExportLayer planned_layer(const geo::Layer& layer, const plan::LayerPlan& plan,
   e.layer = &layer;
   e.printed.assign(layer.islands.size(), nullptr);
   for (const auto& ip : plan.islands) {
+    if (ip.support) {
+      e.support.push_back(&ip);
+      continue;
+    }
     const auto i = static_cast<size_t>(ip.index);
     if (i < resolved_index.size() && resolved_index[i] < e.printed.size()) e.printed[resolved_index[i]] = &ip;
   }

@@ -19,6 +19,7 @@ struct ExportLayer {
   // planned); `skirt`: the layer's skirt loops.
   std::vector<const plan::IslandPlan*> printed;
   const std::vector<plan::PathPlan>* skirt = nullptr;
+  std::vector<const plan::IslandPlan*> support;  // the layer's support islands (island.support)
   const std::vector<std::vector<geo::Cell>>* exact = nullptr;  // per island: exact cells (analysis)
 
   const plan::IslandPlan* printed_on(size_t island) const {

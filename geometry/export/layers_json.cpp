@@ -97,6 +97,18 @@ void LayersJson::append_layer(fmt::memory_buffer& out, const ExportLayer& e) {
     out.push_back('}');
   }
   out.push_back(']');
+  if (!e.support.empty()) {  // support islands: their outline and what the G-code prints there
+    out.append(std::string_view(", \"support\": ["));
+    for (size_t k = 0; k < e.support.size(); ++k) {
+      const plan::IslandPlan& sp = *e.support[k];
+      fmt::format_to(std::back_inserter(out), "{}\n  {{\"area\": {}, \"outer\": ", k ? "," : "", sp.area);
+      append_points(out, sp.shape.empty() ? geo::Ring{} : sp.shape[0]);
+      out.append(std::string_view(", \"paths\": "));
+      append_paths(out, sp.paths);
+      out.push_back('}');
+    }
+    out.push_back(']');
+  }
   if (e.skirt && !e.skirt->empty()) {
     out.append(std::string_view(", \"skirt\": "));
     append_paths(out, *e.skirt);

@@ -28,6 +28,8 @@ constexpr KindStyle kKinds[] = {
     {PathKind::TopSolid, "#f04040", "top solid"},             {PathKind::BottomSolid, "#9654cc", "bottom solid"},
     {PathKind::Bridge, "#4d80ba", "bridge"},                  {PathKind::Skirt, "#00876e", "skirt"},
     {PathKind::Ironing, "#ff8c69", "ironing"},                {PathKind::Custom, "#5ed194", "custom"},
+    {PathKind::Support, "#00ff00", "support"},                {PathKind::SupportInterface, "#008000", "support interface"},
+    {PathKind::Brim, "#00876e", "brim"},
 };
 
 void append_ring(fmt::memory_buffer& out, const geo::Ring& r, bool close) {
@@ -134,6 +136,7 @@ void LayersSvg::append_layer(fmt::memory_buffer& out, const ExportLayer& e, size
     if (const plan::IslandPlan* ip = e.printed_on(i)) append_paths(out, ip->paths);
     if (e.exact && i < e.exact->size()) append_exact(out, (*e.exact)[i]);
   }
+  for (const plan::IslandPlan* sp : e.support) append_paths(out, sp->paths);
   if (e.skirt) append_paths(out, *e.skirt);
   out.append(std::string_view("</g>\n"));
 }

@@ -58,6 +58,12 @@ std::string_view type_name(PathKind k) {
       return "Ironing";
     case PathKind::Custom:
       return "Custom";
+    case PathKind::Support:
+      return "Support material";
+    case PathKind::SupportInterface:
+      return "Support material interface";
+    case PathKind::Brim:
+      return "Skirt/Brim";
   }
   return "Custom";
 }

@@ -20,6 +20,7 @@
 #include "geometry/pipeline/load_plate.h"
 #include "geometry/pipeline/progress.h"
 #include "geometry/pipeline/sequential.h"
+#include "geometry/plan/support_pass.h"
 #include "geometry/preview/preview_html.h"
 #include "geometry/preview/thumbnails.h"
 #include "geometry/polygon/layers.h"
@@ -222,6 +223,10 @@ Status print_sequential(SlicedPlate& in, const setup::PrintSetup& all, LayerOutp
       angles = std::move(*a);
       cascade.set_middle(angles.get());
     }
+    plan::SupportPassOptions so;
+    so.strict = options.strict;
+    so.warn = false;  // said once, for the whole plate
+    if (Status s = plan::plan_support(**one, cascade, report, so); !s) return s;
     lo.object_change_z = k == 0 ? 0 : printed_top + 1;
     if (Status s = run_layers(**one, cascade, lo, report); !s) return s;
     printed_top = std::max(printed_top, pass.top_mm);
@@ -269,6 +274,13 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
     if (!a) return a.error();
     angles = std::move(*a);
     cascade.set_middle(angles.get());
+    progress.finish();
+  }
+  {
+    progress.start("support");
+    plan::SupportPassOptions so;
+    so.strict = options.strict;
+    if (Status s = plan::plan_support(**setup, cascade, report, so); !s) return s.error();
     progress.finish();
   }
   if (!options.explain.empty()) {  // the one layer explained records provenance; the run only for a preview

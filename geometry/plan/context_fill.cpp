@@ -21,6 +21,7 @@ void set_layer_fields(ctx::Context& c, const LayerPlan& l, int islands) {
   c.set(FieldId::LayerHeight, l.height);
   c.set(FieldId::LayerArea, l.area);
   c.set(FieldId::LayerIslands, islands);
+  c.set(FieldId::LayerSupportArea, l.support_area);
 }
 
 void set_island_fields(ctx::Context& c, const IslandPlan& i) {
@@ -42,6 +43,8 @@ void set_island_fields(ctx::Context& c, const IslandPlan& i) {
   c.set(FieldId::IslandBelowArea, i.below_area);
   c.set(FieldId::IslandBelowSupported, i.below_supported);
   c.set(FieldId::ObjectName, i.object_text);
+  c.set(FieldId::IslandSupport, i.support ? 1 : 0);
+  c.set(FieldId::IslandOverhangArea, i.overhang_area);
 }
 
 void set_cell_fields(ctx::Context& c, const CellPlan& cell) {

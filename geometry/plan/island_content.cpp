@@ -299,10 +299,76 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   return ok_status();
 }
 
+Status build_support(IslandPlan& ip, Nest& nest, double height_mm, PathKind kind, bool wall,
+                     std::vector<FillGrid>& regions) {
+  ip.paths.clear();
+  ip.cells.clear();
+  regions.clear();
+  const PropertyValues& P = ip.props;
+  TraceRef log;
+  auto props = nest.path_props(P, kind, -1, &log);
+  if (!props) return props.error();
+  const double w = (*props)[PropId::Width];
+  const bool iface = kind == PathKind::SupportInterface;
+  const double density = std::min(1.0, P[iface ? PropId::SupportInterfaceDensity : PropId::SupportDensity]);
+  if (density <= 0) return ok_status();
+  // Bead edges stay on the region's border: the xy gap is air between the part and the beads.
+  geo::Rings inner = toolpath::offset(ip.shape, -0.5 * w);
+  if (inner.empty()) return ok_status();
+  const double s = toolpath::bead_spacing_mm(w, height_mm);
+  if (wall) {  // a branch's wall, then its inside
+    for (const geo::Ring& r : inner) {
+      PathPlan p;
+      p.kind = kind;
+      p.perimeter = 0;
+      p.closed = true;
+      p.width = static_cast<float>(w);
+      p.pts = r;
+      p.props = *props;
+      p.trace = nest.path_log(log);
+      ip.paths.push_back(std::move(p));
+    }
+    inner = toolpath::offset(inner, -s);
+    if (inner.empty()) return ok_status();
+  }
+  std::vector<double> angles{iface ? 90.0 : 0.0};
+  double pitch = s / density;
+  if (!iface && P[PropId::SupportPattern] == static_cast<double>(schema::SupportPattern::Grid)) {
+    angles.push_back(90.0);  // both ways in every layer, each way at half the density
+    pitch *= 2;
+  }
+  for (double angle : angles) {
+    toolpath::FillSpec fs;
+    fs.angle_deg = angle;
+    fs.pitch_mm = pitch;
+    fs.origin_mm = 0;  // a grid fixed to the bed: lines stand on the lines below
+    fs.link_max_mm = 5 * pitch;
+    for (toolpath::FillPath& fp : toolpath::zigzag(toolpath::fill_shape(inner, geo::EdgeKind::Real), fs)) {
+      CellPlan cell;
+      cell.index = static_cast<int>(ip.cells.size());
+      cell.area_mm2 = fp.area_mm2;
+      cell.fill_angle_deg = angle;
+      cell.solid = iface;
+      ip.cells.push_back(cell);
+      PathPlan p;
+      p.kind = kind;
+      p.cell = cell.index;
+      p.width = static_cast<float>(w);
+      p.pts = std::move(fp.pts);
+      p.border = std::move(fp.border);
+      p.props = *props;
+      p.trace = nest.path_log(log);
+      ip.paths.push_back(std::move(p));
+    }
+  }
+  regions.push_back({kind, EdgeGrid(inner)});
+  return ok_status();
+}
+
 Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm) {
   const auto& S = nest.setup();
-  const int loops = static_cast<int>(S.print_props[PropId::SkirtLoops]);
-  if (loops <= 0 || S.skirt_around.empty()) return ok_status();
+  const int loops = S.skirt_around.empty() ? 0 : static_cast<int>(S.print_props[PropId::SkirtLoops]);
+  if (loops <= 0 && S.brim.empty()) return ok_status();
   nest.ctx().clear_from(schema::Level::Island);
   TraceRef log;
   auto props = nest.path_props(plan.props, PathKind::Skirt, -1, &log);
@@ -322,6 +388,20 @@ Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm) {
       p.trace = nest.path_log(log);
       plan.skirt.push_back(std::move(p));
     }
+  }
+  if (S.brim.empty()) return ok_status();
+  TraceRef brim_log;
+  auto brim = nest.path_props(plan.props, PathKind::Brim, -1, &brim_log);
+  if (!brim) return brim.error();
+  for (const auto& b : S.brim) {
+    PathPlan p;
+    p.kind = PathKind::Brim;
+    p.closed = b.closed;
+    p.width = static_cast<float>((*brim)[PropId::Width]);
+    p.pts = b.pts;
+    p.props = *brim;
+    p.trace = nest.path_log(brim_log);
+    plan.skirt.push_back(std::move(p));
   }
   return ok_status();
 }

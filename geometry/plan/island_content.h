@@ -39,7 +39,14 @@ void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbour
 Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double height_mm,
                     std::vector<FillGrid>& regions);
 
-// The skirt of `plan` (layer 0): skirt_loops loops around setup.skirt_around, outermost first.
+// Builds a support island's paths: zig-zags over ip.shape (kind Support or SupportInterface) on a
+// grid fixed to the bed, so that lines stand on the lines below; the interface's lines cross the
+// base's. With `wall` (a tree's branch), a closed loop round the island first, the lines inside it.
+Status build_support(IslandPlan& ip, Nest& nest, double height_mm, schema::PathKind kind, bool wall,
+                     std::vector<FillGrid>& regions);
+
+// The skirt of `plan` (layer 0): skirt_loops loops around setup.skirt_around, outermost first;
+// then the brim (setup.brim).
 Status build_skirt(LayerPlan& plan, Nest& nest, double height_mm);
 
 }  // namespace tranche::plan

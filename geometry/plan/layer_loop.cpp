@@ -9,6 +9,7 @@
 #include "geometry/plan/replace.h"
 #include "geometry/plan/timing.h"
 #include "geometry/plan/travel.h"
+#include "geometry/support/overhang.h"
 #include "geometry/toolpath/relations.h"
 
 namespace tranche::plan {
@@ -44,12 +45,15 @@ class LayerTask final : public IslandHost {
     return nest_.decide(Stage::Island, ip.props, ip.trace);
   }
   Status build_island(IslandPlan& ip) override {
-    return plan::build_island(ip, nest_, nb_, plan_.height, regions_[static_cast<size_t>(ip.index)]);
+    auto& regions = regions_[static_cast<size_t>(ip.index)];
+    if (ip.support) return build_support(ip, nest_, plan_.height, support_kind_, support_wall_, regions);
+    return plan::build_island(ip, nest_, nb_, plan_.height, regions);
   }
 
  private:
   Status layer_level();
-  Status island_level(const geo::Island& src, int index, IslandPlan& ip);
+  Status island_level(IslandPlan& ip);
+  Status support_level();
   void order();
   Status path_level(IslandPlan* ip, PathPlan& p);
   Status piece_level(PathPlan& p);
@@ -62,6 +66,8 @@ class LayerTask final : public IslandHost {
   bool overhang_ = false;
   LayerPlan plan_;
   std::vector<std::vector<FillGrid>> regions_;  // per island (by index): its fill regions' edges
+  schema::PathKind support_kind_ = schema::PathKind::Support;  // of the support island being built
+  bool support_wall_ = false;                                  // a tree branch: a wall round it
 };
 
 Status LayerTask::layer_level() {
@@ -71,14 +77,27 @@ Status LayerTask::layer_level() {
   plan_.z = layer.z_top;
   plan_.height = layer.height();
   plan_.area = S.table.get(L, FieldId::LayerArea);
+  if (static_cast<size_t>(L) < S.support.size()) plan_.support_area = S.support[static_cast<size_t>(L)].area_mm2;
   nest_.enter_layer(plan_, static_cast<int>(layer.islands.size()));
   plan_.props = S.print_props;
   if (Status s = nest_.decide(Stage::Layer, plan_.props, plan_.trace); !s) return s;
 
   plan_.islands.resize(layer.islands.size());
   regions_.resize(layer.islands.size());
-  for (size_t i = 0; i < layer.islands.size(); ++i)
-    if (Status s = island_level(layer.islands[i], static_cast<int>(i), plan_.islands[i]); !s) return s;
+  for (size_t i = 0; i < layer.islands.size(); ++i) {
+    IslandPlan& ip = plan_.islands[i];
+    const geo::Island& src = layer.islands[i];
+    ip.index = static_cast<int>(i);
+    ip.object = src.object;
+    const auto k = static_cast<size_t>(src.object);
+    ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
+    ip.shape.push_back(src.shape.outer);
+    for (const auto& h : src.shape.holes) ip.shape.push_back(h);
+    if (static_cast<size_t>(L) < S.overhang_area.size() && i < S.overhang_area[static_cast<size_t>(L)].size())
+      ip.overhang_area = S.overhang_area[static_cast<size_t>(L)][i];
+    if (Status s = island_level(ip); !s) return s;
+  }
+  if (Status s = support_level(); !s) return s;
   if (L == 0)
     if (Status s = build_skirt(plan_, nest_, plan_.height); !s) return s;
   order();
@@ -98,13 +117,36 @@ Status LayerTask::layer_level() {
   return decide_cooling(plan_, nest_);
 }
 
-Status LayerTask::island_level(const geo::Island& src, int index, IslandPlan& ip) {
-  ip.index = index;
-  ip.object = src.object;
-  const auto k = static_cast<size_t>(src.object);
-  ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
-  ip.shape.push_back(src.shape.outer);
-  for (const auto& h : src.shape.holes) ip.shape.push_back(h);
+// Support islands follow the part's: each piece of the layer's support (base, then interface)
+// is an island of its own (island.support), decided and built like the others.
+Status LayerTask::support_level() {
+  if (static_cast<size_t>(L) >= S.support.size()) return ok_status();
+  const support::SupportLayer& sl = S.support[static_cast<size_t>(L)];
+  struct Piece {
+    schema::PathKind kind;
+    const geo::Rings* region;
+    bool wall;
+  };
+  for (const Piece& pc : {Piece{schema::PathKind::Support, &sl.base, false},
+                          Piece{schema::PathKind::SupportInterface, &sl.interface, false},
+                          Piece{schema::PathKind::Support, &sl.tree, true}}) {
+    support_kind_ = pc.kind;
+    support_wall_ = pc.wall;
+    const geo::Rings* region = pc.region;
+    for (geo::Rings& piece : support::components(*region)) {
+      IslandPlan ip;
+      ip.index = static_cast<int>(plan_.islands.size());
+      ip.support = true;
+      ip.shape = std::move(piece);
+      regions_.emplace_back();
+      if (Status s = island_level(ip); !s) return s;
+      plan_.islands.push_back(std::move(ip));
+    }
+  }
+  return ok_status();
+}
+
+Status LayerTask::island_level(IslandPlan& ip) {
   if (Status s = redecide_island(ip); !s) return s;
   if (nest_.replaces(Level::Island)) {
     IslandReplace api(*this, ip);

@@ -114,6 +114,8 @@ struct IslandPlan {
   double longest_edge_angle = 0, min_width = 0;
   bool convex = false;
   double below_area = 0, below_supported = 0;
+  bool support = false;       // an island of support material (island.support)
+  double overhang_area = 0;   // mm², island.overhang_area (geometry/plan/support_pass)
   ctx::PropertyValues props;  // as decided at the island stage
   TraceRef trace;             // provenance of the island stage (when recorded)
   std::vector<CellPlan> cells;
@@ -125,9 +127,10 @@ struct IslandPlan {
 struct LayerPlan {
   int index = 0;
   double z_bottom = 0, z = 0, height = 0, area = 0;  // mm, mm²
+  double support_area = 0;                           // mm², layer.support_area
   ctx::PropertyValues props;                         // as decided at the layer stage
   TraceRef trace;                                    // provenance of the layer stage and a layer-wide fan
-  std::vector<PathPlan> skirt;                       // before the islands, on layer 0
+  std::vector<PathPlan> skirt;                       // skirt and brim, before the islands, on layer 0
   std::vector<IslandPlan> islands;                   // print order
   double time_s = 0;        // estimated, excluding the travel from the previous layer
   double extruded_mm3 = 0;  // plastic volume

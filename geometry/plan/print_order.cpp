@@ -24,6 +24,13 @@ geo::Point layer_start(const std::vector<IslandPlan>& islands) {
 
 void order_skirt(std::vector<PathPlan>& skirt, geo::Point& pos) {
   for (auto& sk : skirt) {
+    if (!sk.closed) {  // a piece of brim cut by an island: from its nearer end
+      auto d2 = [&](const geo::Point& q) { return double(q.X - pos.X) * double(q.X - pos.X) + double(q.Y - pos.Y) * double(q.Y - pos.Y); };
+      if (!sk.pts.empty() && d2(sk.pts.back()) < d2(sk.pts.front())) std::reverse(sk.pts.begin(), sk.pts.end());
+      sk.border.assign(sk.piece_count(), Border::None);
+      if (!sk.pts.empty()) pos = sk.pts.back();
+      continue;
+    }
     size_t seam = toolpath::choose_seam(sk.pts, schema::Seam::Rear, pos);
     sk.pts = toolpath::open_loop_at(sk.pts, seam);
     sk.border.assign(sk.piece_count(), Border::None);

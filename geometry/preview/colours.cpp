@@ -28,6 +28,12 @@ Rgb kind_colour(PathKind k) {
       return {0xff, 0x8c, 0x69};
     case PathKind::Custom:
       return {0x5e, 0xd1, 0x94};
+    case PathKind::Support:
+      return {0x00, 0xff, 0x00};  // PrusaSlicer's support colours
+    case PathKind::SupportInterface:
+      return {0x00, 0x80, 0x00};
+    case PathKind::Brim:
+      return {0x00, 0x87, 0x6e};
   }
   return {0x80, 0x80, 0x80};
 }
@@ -54,6 +60,12 @@ std::string_view kind_label(PathKind k) {
       return "Ironing";
     case PathKind::Custom:
       return "Custom";
+    case PathKind::Support:
+      return "Support material";
+    case PathKind::SupportInterface:
+      return "Support material interface";
+    case PathKind::Brim:
+      return "Skirt/Brim";
   }
   return "Custom";
 }

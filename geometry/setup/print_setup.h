@@ -14,6 +14,8 @@
 #include "base/report.h"
 #include "base/result.h"
 #include "geometry/core/layer.h"
+#include "geometry/support/brim.h"
+#include "geometry/support/support.h"
 #include "geometry/toolpath/motion.h"
 #include "runtime/context/cascade.h"
 
@@ -72,6 +74,12 @@ struct PrintSetup {
     double outside(double x, double y) const;
   } bed;
   bool allow_off_bed = false;
+  // Support material and the brim, filled by plan/support_pass before the layer loop (empty:
+  // none): per layer the support to print, each island's overhang (mm², island.overhang_area,
+  // [layer][island]), and layer 0's brim.
+  std::vector<support::SupportLayer> support;
+  std::vector<std::vector<float>> overhang_area;
+  std::vector<support::BrimPath> brim;
 };
 
 // Builds the setup of `layers` (resolved, bottom to top, not empty). `print_ctx` and

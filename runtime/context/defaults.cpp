@@ -23,6 +23,9 @@ constexpr BuiltinRule kRules[] = {
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Bridge), 25},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Skirt), 30},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Ironing), 15},
+    {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Support), 50},
+    {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::SupportInterface), 40},
+    {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Brim), 30},
     // rule "first layer" when layer.index == 0 { speed = 20 mm/s; fan = 0% }
     {PropId::Speed, FieldId::LayerIndex, T::Equals, 0, 20},
     {PropId::Fan, FieldId::LayerIndex, T::Equals, 0, 0},

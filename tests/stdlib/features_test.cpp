@@ -309,3 +309,43 @@ TEST_CASE("features/fan-by-layer-time: full fan on short layers, less on long on
     if (layer >= 1 && layer < 9) CHECK(fan < 0.9);        // the base: 60 x 60 mm a layer
   }
 }
+
+namespace {
+// A 4 mm stem under a 20 mm cap whose bottom is at `cap_z`.
+geo::Mesh mushroom_at(double cap_z) {
+  geo::Mesh m = geo::box({4, 4, cap_z}, {8, 8, 0});
+  geo::append(m, geo::box({20, 20, 2}, {0, 0, cap_z}));
+  return m;
+}
+int support_moves(const Gcode& g, const std::string& type = "Support material") {
+  int n = 0;
+  for (const auto& m : g.moves) n += extrudes(m) && m.type == type;
+  return n;
+}
+}  // namespace
+
+TEST_CASE("features/support-blockers-by-height: support above support_from, none below") {
+  TempDir dir("feat-support-block");
+  auto high = slice_with(dir, "high", mushroom_at(8), Profile().feature("support-blockers-by-height"));
+  CHECK(support_moves(high) > 50);
+  auto low = slice_with(dir, "low", mushroom_at(4), Profile().feature("support-blockers-by-height"));
+  CHECK(support_moves(low) == 0);
+  CHECK(support_moves(low, "Support material interface") == 0);
+  auto moved = slice_with(dir, "moved", mushroom_at(8),
+                          Profile().feature("support-blockers-by-height").set("support_from", "10"));
+  CHECK(support_moves(moved) == 0);
+}
+
+TEST_CASE("features/support-for-overhangs-only: sparse support at its own speed, one interface layer") {
+  TempDir dir("feat-support-light");
+  auto g = slice_with(dir, "light", mushroom_at(8),
+                      Profile().feature("support-for-overhangs-only").set("min_layer_time", "0"));
+  std::set<int> iface_layers;
+  for (const auto& m : g.moves) {
+    if (!extrudes(m)) continue;
+    if (m.type == "Support material" && m.layer > 0) CHECK(m.f == 45 * 60);
+    if (m.type == "Support material interface") iface_layers.insert(m.layer);
+  }
+  CHECK(support_moves(g) > 30);
+  CHECK(iface_layers.size() == 1);
+}

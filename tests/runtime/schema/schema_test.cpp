@@ -43,7 +43,10 @@ TEST_CASE("schema: properties have defaults inside their physical range") {
 TEST_CASE("schema: C++ enums agree with the enum tables") {
   CHECK(find_enum_value(EnumType::PathKind, "outer_perimeter") == static_cast<int>(PathKind::OuterPerimeter));
   CHECK(find_enum_value(EnumType::PathKind, "custom") == static_cast<int>(PathKind::Custom));
-  CHECK(enum_info(EnumType::PathKind).values.size() == static_cast<size_t>(PathKind::Custom) + 1);
+  CHECK(find_enum_value(EnumType::PathKind, "support_interface") == static_cast<int>(PathKind::SupportInterface));
+  CHECK(enum_info(EnumType::PathKind).values.size() == static_cast<size_t>(PathKind::Brim) + 1);
+  CHECK(find_enum_value(EnumType::Support, "normal") == static_cast<int>(Support::Normal));
+  CHECK(find_enum_value(EnumType::SupportPattern, "grid") == static_cast<int>(SupportPattern::Grid));
   CHECK(find_enum_value(EnumType::Border, "artificial") == static_cast<int>(Border::Artificial));
   CHECK(find_enum_value(EnumType::Flavor, "reprapfirmware") == static_cast<int>(Flavor::RepRapFirmware));
   CHECK(find_enum_value(EnumType::Seam, "rear") == static_cast<int>(Seam::Rear));

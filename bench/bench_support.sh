@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Support material against PrusaSlicer's: each model with overhangs (generated: a mushroom, a
+# bracket's ledge, a slab spanning 30 mm, a 53° funnel; PrusaSlicer's bunny; the capped Stanford
+# bunny) sliced by tranche without support, with support=normal, and by PrusaSlicer with
+# --support-material --support-material-auto, all on the benchmark settings (bench/peers/). gcheck
+# measures what each lays on air (its `unsupported` line); support_row.py the support's plastic
+# and trips; time is user seconds. One table, then tranche's ratios to PrusaSlicer.
+#   bench/bench_support.sh [BUILD_DIR]      env: MODELS, GCHECK=path/to/gcheck.py, OUT=dir to keep files
+set -uo pipefail
+build=${1:-build}
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/peers/common.sh"
+bench_setup "$build" || { echo "bench_support: cannot build tranche"; exit 1; }
+GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
+[[ -f $GCHECK ]] || { echo "bench_support: gcheck not found (set GCHECK=path/to/gcheck.py)"; exit 1; }
+MODELS=${MODELS:-mushroom ledge span slope bunny stanford_bunny_closed}
+out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-support-XXXXXX")}
+[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
+mkdir -p "$out"
+export LC_ALL=C
+rows="$out/rows.tsv"
+: >"$rows"
+while read -r name model; do
+  for s in tranche_none tranche prusa; do
+    g="$out/$name.$s.gcode"
+    case $s in
+      tranche_none) peer_cmd tranche "$model" "$g" ;;
+      tranche) peer_cmd tranche "$model" "$g"; CMD+=(--set support=normal) ;;
+      prusa) command -v prusa-slicer >/dev/null || continue
+        peer_cmd prusa "$model" "$g"; CMD=("${CMD[@]:0:1}" --support-material --support-material-auto "${CMD[@]:1}") ;;
+    esac
+    env -u DISPLAY /usr/bin/time -f %U -o "$out/$name.$s.time" timeout 900 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
+    t=$(tail -1 "$out/$name.$s.time" 2>/dev/null)
+    if [[ ! -s $g ]]; then
+      printf '%s\t%s\tfailed\n' "$name" "$s" >>"$rows"
+      continue
+    fi
+    off=$(/usr/bin/python3 "$here/quality_row.py" --offset "$model" 100,100)
+    /usr/bin/python3 "$GCHECK" "$model" "$g" --offset="$off" --json "$out/$name.$s.json" >"$out/$name.$s.gcheck" 2>&1
+    /usr/bin/python3 "$here/support_row.py" "$name" "$s" "$out/$name.$s.json" "$g" "$t" >>"$rows"
+  done
+done < <(bench_models "$MODELS")
+/usr/bin/python3 "$here/support_row.py" --table "$rows"
+[[ -n ${OUT:-} ]] && echo "files kept in $out"

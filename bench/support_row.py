@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""One row of bench_support.sh: what gcheck says a G-code lays on air, and what its support costs.
+
+usage: support_row.py NAME SLICER GCHECK.json FILE.gcode SECONDS
+       support_row.py --table ROWS.tsv
+Support is the extrusion typed support (;TYPE: containing "support", PrusaSlicer's and Cura's
+names): its plastic (mm³ of filament), and its trips (runs of travel moves that start or end at a
+support extrusion). Handles M82/M83 and G92.
+"""
+import json
+import math
+import re
+import sys
+
+WORD = re.compile(r'([XYZE])(-?\d*\.?\d+)')
+
+
+def support_costs(path, filament=1.75):
+    rel_e, x, y, e = False, 0.0, 0.0, 0.0
+    kind = ''
+    fed = 0.0
+    trips = 0
+    trip_from_support = None  # open trip: did it start at a support extrusion?
+    last_was_support = False
+    for raw in open(path, errors='replace'):
+        if raw.startswith(';TYPE:'):
+            kind = raw[6:].strip().lower()
+            continue
+        line = raw.split(';', 1)[0].strip()
+        if not line:
+            continue
+        cmd = line.split(None, 1)[0].upper()
+        if cmd == 'M82':
+            rel_e = False
+        elif cmd == 'M83':
+            rel_e = True
+        elif cmd == 'G92':
+            for k, v in WORD.findall(line):
+                if k == 'E':
+                    e = float(v)
+        elif cmd in ('G0', 'G1'):
+            w = dict(WORD.findall(line))
+            nx, ny = float(w.get('X', x)), float(w.get('Y', y))
+            de = 0.0
+            if 'E' in w:
+                v = float(w['E'])
+                de = v if rel_e else v - e
+                e = e + v if rel_e else v
+            moved = (nx, ny) != (x, y)
+            if moved and de > 0:
+                sup = 'support' in kind
+                if sup:
+                    fed += de
+                if trip_from_support is not None and (trip_from_support or sup):
+                    trips += 1
+                trip_from_support = None
+                last_was_support = sup
+            elif moved and trip_from_support is None:
+                trip_from_support = last_was_support
+            x, y = nx, ny
+    return fed * math.pi * (filament / 2) ** 2, trips
+
+
+def row(name, slicer, js, gcode, seconds):
+    s = json.load(open(js))['summary']
+    vol, trips = support_costs(gcode)
+    cells = [name, slicer, '%.1f' % s.get('unsupported_area_total', float('nan')),
+             '%.1f' % s.get('unsupported_area_max', float('nan')), str(s.get('unsupported_layers', '?')),
+             '%.0f' % vol, str(trips), seconds, str(s.get('verdict', '?'))]
+    print('\t'.join(cells))
+
+
+def table(path):
+    rows = [l.rstrip('\n').split('\t') for l in open(path) if l.strip()]
+    head = ['model', 'slicer', 'air mm²', 'worst layer mm²', 'air layers', 'support mm³', 'support trips', 'time s',
+            'gcheck']
+    widths = [max(len(h), *(len(r[i]) for r in rows if len(r) > i)) for i, h in enumerate(head)]
+    print('  '.join(h.ljust(w) for h, w in zip(head, widths)))
+    for r in rows:
+        print('  '.join(c.ljust(w) for c, w in zip(r, widths)))
+    # Ratios of tranche with support to PrusaSlicer with support, per model.
+    by = {(r[0], r[1]): r for r in rows if len(r) >= 8}
+    print('\ntranche (support=normal) / PrusaSlicer (--support-material --support-material-auto):')
+    for m in dict.fromkeys(r[0] for r in rows):
+        t, p = by.get((m, 'tranche')), by.get((m, 'prusa'))
+        if not t or not p:
+            continue
+        def ratio(i):
+            a, b = float(t[i]), float(p[i])
+            return 'n/a' if b == 0 else '%.2f' % (a / b)
+        print('  %-22s support plastic %s  support trips %s  time %s  air %s vs %s mm²' % (
+            m, ratio(5), ratio(6), ratio(7), t[2], p[2]))
+
+
+if __name__ == '__main__':
+    if sys.argv[1] == '--table':
+        table(sys.argv[2])
+    else:
+        row(*sys.argv[1:6])

@@ -1,0 +1,309 @@
+#include "geometry/plan/support_pass.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+#include "geometry/plan/island_content.h"
+#include "geometry/plan/nest.h"
+#include "geometry/support/overhang.h"
+#include "geometry/support/tree.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/flow.h"
+
+namespace tranche::plan {
+namespace {
+
+using geo::Rings;
+using schema::FieldId;
+using schema::PathKind;
+using schema::PropId;
+using schema::Stage;
+
+// An overhang nowhere wider than this is a short ledge: it prints in the air without sagging much
+// (the step of a temperature tower, the apex of a round arch), so the warning leaves it out.
+constexpr double kLedgeMm = 2.0;
+
+// What the island stage decided about one island's support.
+struct IslandSupport {
+  schema::Support style = schema::Support::None;
+  double z_gap = 0.2, xy_gap = 0.5;
+  int interface_layers = 2;
+  bool bed_only = false;
+  double brim_mm = 0;
+  double reach = 0;  // mm: how far the island leans out over the layer below, unsupported
+  Rings overhang;
+};
+
+struct LayerSupport {
+  std::vector<IslandSupport> islands;
+  double brim_width = 0;  // mm, the bead of the brim (layer 0, when an island asks for one)
+};
+
+Rings shape_of(const geo::Island& isl) {
+  Rings r{isl.shape.outer};
+  r.insert(r.end(), isl.shape.holes.begin(), isl.shape.holes.end());
+  return r;
+}
+
+// Layer L's islands decided at their island stage, as the layer loop decides them, and their
+// overhangs measured.
+Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, LayerSupport& out) {
+  Nest nest(S, C);
+  toolpath::Neighbours nb(S.layers, L);
+  const IslandNeeds needs = IslandNeeds::of(nest);
+  const geo::Layer& layer = S.layers[static_cast<size_t>(L)];
+  LayerPlan lp;
+  lp.index = L;
+  lp.z_bottom = layer.z_bottom;
+  lp.z = layer.z_top;
+  lp.height = layer.height();
+  lp.area = S.table.get(L, FieldId::LayerArea);
+  nest.enter_layer(lp, static_cast<int>(layer.islands.size()));
+  lp.props = S.print_props;
+  if (Status s = nest.decide(Stage::Layer, lp.props); !s) return s;
+  const double nozzle = S.print_props[PropId::NozzleDiameter];
+  std::map<double, Rings> grown;  // the layer below grown by each reach asked for
+  out.islands.resize(layer.islands.size());
+  for (size_t i = 0; i < layer.islands.size(); ++i) {
+    IslandPlan ip;
+    ip.index = static_cast<int>(i);
+    ip.object = layer.islands[i].object;
+    ip.shape = shape_of(layer.islands[i]);
+    const auto obj = static_cast<size_t>(ip.object);
+    ip.object_text = obj < S.object_texts.size() ? S.object_texts[obj] : -1;
+    measure_island(ip, S.shift, nb, needs);
+    nest.enter_island(ip);
+    ip.props = lp.props;
+    if (Status s = nest.decide(Stage::Island, ip.props); !s) return s;
+    const ctx::PropertyValues& P = ip.props;
+    IslandSupport& d = out.islands[i];
+    d.style = static_cast<schema::Support>(static_cast<int>(P[PropId::Support]));
+    d.z_gap = P[PropId::SupportZGap];
+    d.xy_gap = P[PropId::SupportXyGap];
+    d.interface_layers = static_cast<int>(P[PropId::SupportInterfaceLayers]);
+    d.bed_only = P[PropId::SupportOnBedOnly] != 0;
+    d.brim_mm = L == 0 ? P[PropId::BrimWidth] : 0;
+    if (d.brim_mm > 0 && out.brim_width <= 0) {
+      auto w = nest.path_props(P, PathKind::Brim, -1);
+      if (!w) return w.error();
+      out.brim_width = (*w)[PropId::Width];
+    }
+    const double angle = P[PropId::SupportAngle];
+    if (L == 0 || angle >= 90) continue;
+    support::OverhangSpec spec;
+    spec.reach_mm = lp.height * std::tan(angle * std::numbers::pi / 180);
+    spec.nozzle_mm = nozzle;
+    spec.max_bridge_mm = P[PropId::SupportMaxBridge];
+    auto it = grown.find(spec.reach_mm);
+    if (it == grown.end()) it = grown.emplace(spec.reach_mm, toolpath::offset(nb.layer(-1), spec.reach_mm)).first;
+    d.overhang = support::overhang(ip.shape, it->second, nb.layer(-1), spec);
+    d.reach = spec.reach_mm;
+  }
+  return ok_status();
+}
+
+// The layer where the top of the support under an overhang of layer L is printed: the highest
+// whose top lies z_gap or more below L's bottom; -1 when there is none.
+int contact_layer(const setup::PrintSetup& S, int L, double z_gap) {
+  const double limit = S.layers[static_cast<size_t>(L)].z_bottom - z_gap + 1e-6;
+  int k = L - 1;
+  while (k >= 0 && S.layers[static_cast<size_t>(k)].z_top > limit) --k;
+  return k;
+}
+
+std::string where(const setup::PrintSetup& S, int L) {
+  return fmt::format("layer {} (z {:.2f} mm)", L, S.layers[static_cast<size_t>(L)].z_top);
+}
+
+// The warning for overhangs printed in the air: the worst layers, once.
+Status warn_unsupported(const setup::PrintSetup& S, const std::vector<double>& air, Report& report,
+                        const SupportPassOptions& o) {
+  constexpr double kWorth = 1.0;  // mm²: less on a layer is a speck no user would support
+  std::vector<int> worst;
+  double total = 0;
+  for (size_t L = 0; L < air.size(); ++L)
+    if (air[L] >= kWorth) worst.push_back(static_cast<int>(L)), total += air[L];
+  // Less than this in all is a detail no user would put support under (the apex of a round arch).
+  constexpr double kWorthSaying = 20.0;  // mm²
+  if (worst.empty() || total < kWorthSaying) return ok_status();
+  std::sort(worst.begin(), worst.end(), [&](int a, int b) { return air[size_t(a)] > air[size_t(b)]; });
+  std::string also;
+  for (size_t k = 1; k < std::min<size_t>(3, worst.size()); ++k)
+    also += fmt::format("{}{}: {:.0f} mm²", k > 1 ? "; " : "", where(S, worst[k]), air[size_t(worst[k])]);
+  const std::string msg =
+      worst.size() == 1
+          ? fmt::format("{:.0f} mm² of overhang printed in the air; set support = normal or tree (--set support=normal) or "
+                        "support it by a rule",
+                        total)
+          : fmt::format("{:.0f} mm² of overhang printed in the air here, {:.0f} mm² on {} layers in all (next worst: "
+                        "{}); set support = normal or tree (--set support=normal) or support it by a rule",
+                        air[size_t(worst[0])], total, worst.size(), also);
+  if (o.strict) return Error{where(S, worst[0]), msg + " (--strict makes this an error)"};
+  if (o.warn) report.warn("unsupported-overhang", where(S, worst[0]), msg);
+  return ok_status();
+}
+
+}  // namespace
+
+namespace {
+
+// The contacts of every overhang that wants support, by style; the rest is air.
+struct Contacts {
+  support::ProjectInput normal, tree_iface, tree;  // the columns; the trees' interface; the trees' tips
+  std::vector<double> air;                         // per layer, mm² printed in the air
+  bool any_normal = false, any_tree = false;
+};
+
+Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided) {
+  const size_t n = S.layers.size();
+  Contacts c;
+  for (support::ProjectInput* in : {&c.normal, &c.tree_iface, &c.tree}) {
+    in->layers = S.layers;
+    in->contacts.resize(n);
+    in->bottom_gap_layers = 0;  // the largest z gap asked for, in layers
+  }
+  c.tree_iface.columns = false;
+  c.air.assign(n, 0.0);
+  S.overhang_area.assign(n, {});
+  for (size_t L = 0; L < n; ++L) {
+    S.overhang_area[L].assign(decided[L].islands.size(), 0.f);
+    for (size_t i = 0; i < decided[L].islands.size(); ++i) {
+      IslandSupport& d = decided[L].islands[i];
+      if (d.overhang.empty()) continue;
+      const double area = toolpath::area_mm2(d.overhang);
+      S.overhang_area[L][i] = static_cast<float>(area);
+      const int k = d.style != schema::Support::None ? contact_layer(S, static_cast<int>(L), d.z_gap) : -1;
+      if (k < 0) {  // not wanted, or no room under it: said when wider than a short ledge
+        c.air[L] += toolpath::area_mm2(toolpath::offset_open(d.overhang, 0, 0.5 * kLedgeMm));
+        continue;
+      }
+      const int gap = static_cast<int>(L) - 1 - k;
+      // Grown by the reach inside the island: the slivers of a slope, a reach apart from layer to
+      // layer, then overlap into one band (support/support.h).
+      d.overhang = toolpath::intersection(toolpath::offset(d.overhang, d.reach + 0.05), shape_of(S.layers[L].islands[i]));
+      if (d.style == schema::Support::Normal) {
+        c.normal.bottom_gap_layers = std::max(c.normal.bottom_gap_layers, gap);
+        c.normal.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});
+        c.any_normal = true;
+        continue;
+      }
+      // Tree: the interface under the overhang, the tips right below it.
+      const int tips_at = k - d.interface_layers;
+      c.tree.bottom_gap_layers = std::max(c.tree.bottom_gap_layers, gap);
+      if (tips_at >= 0) c.tree.contacts[size_t(tips_at)].push_back({d.overhang, 0, d.bed_only});
+      c.tree_iface.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});
+      c.any_tree = true;
+    }
+  }
+  return c;
+}
+
+// The part grown by each island's xy gap, per layer.
+std::vector<Rings> keep_out(const setup::PrintSetup& S, const std::vector<LayerSupport>& decided) {
+  std::vector<Rings> out(S.layers.size());
+  tbb::parallel_for(size_t{0}, S.layers.size(), [&](size_t L) {
+    Rings grown;
+    for (size_t i = 0; i < S.layers[L].islands.size(); ++i) {
+      Rings g = toolpath::offset(shape_of(S.layers[L].islands[i]), decided[L].islands[i].xy_gap);
+      grown.insert(grown.end(), g.begin(), g.end());
+    }
+    out[L] = toolpath::union_of(grown);
+  });
+  return out;
+}
+
+// Columns and trees grown from the contacts into S.support.
+void grow_support(setup::PrintSetup& S, const std::vector<LayerSupport>& decided, Contacts& c, Report& report,
+                  const SupportPassOptions& o) {
+  const std::vector<Rings> keep = keep_out(S, decided);
+  const Rings bed = support::bed_region(S.bed.circular, S.bed.min_x, S.bed.min_y, S.bed.max_x, S.bed.max_y, S.shift);
+  const double w = S.print_props[PropId::NozzleDiameter] * 1.125;
+  for (support::ProjectInput* in : {&c.normal, &c.tree_iface, &c.tree}) {
+    in->keep_out = keep;
+    in->bed = bed;
+    in->min_width_mm = in->merge_mm = w;
+  }
+  double off_bed = 0, blocked = 0;
+  S.support.assign(S.layers.size(), {});
+  if (c.any_normal) {
+    support::ProjectResult r = support::project(c.normal);
+    S.support = std::move(r.layers);
+    off_bed += r.off_bed_mm2, blocked += r.blocked_mm2;
+  }
+  if (c.any_tree) {
+    support::ProjectResult iface = support::project(c.tree_iface);
+    support::TreeResult trees = support::grow_trees(c.tree, support::TreeSpec{});
+    blocked += trees.blocked_mm2;
+    for (size_t k = 0; k < S.layers.size(); ++k) {
+      support::SupportLayer& sl = S.support[k];
+      sl.interface = toolpath::union_of(sl.interface, iface.layers[k].interface);
+      Rings taken = toolpath::union_of(sl.base, sl.interface);  // normal support and interfaces come first
+      sl.tree = toolpath::difference(trees.branches[k], taken);
+      sl.area_mm2 = toolpath::area_mm2(sl.base) + toolpath::area_mm2(sl.interface) + toolpath::area_mm2(sl.tree);
+    }
+  }
+  if (o.warn && off_bed > 1)
+    report.warn("support-off-bed", "support",
+                fmt::format("{:.0f} mm² of support would stand off the bed and was left out", off_bed));
+  if (o.warn && blocked > 1)
+    report.warn("support-on-part", "support",
+                fmt::format("{:.0f} mm² of overhang not supported: support_on_bed_only, and the part lies below it",
+                            blocked));
+}
+
+// Layer 0's islands that ask for a brim, and the skirt round the brim and the first layer's support.
+void plan_brim(setup::PrintSetup& S, const LayerSupport& first) {
+  S.brim.clear();
+  if (!S.layers.empty() && first.brim_width > 0) {
+    const double w = first.brim_width;
+    const double s = toolpath::bead_spacing_mm(w, S.layers[0].height());
+    std::vector<support::BrimIsland> asks;
+    Rings all;
+    for (size_t i = 0; i < S.layers[0].islands.size(); ++i) {
+      const geo::Ring& outer = S.layers[0].islands[i].shape.outer;
+      all.push_back(outer);
+      const double mm = first.islands[i].brim_mm;
+      if (mm > 0) asks.push_back({outer, std::max(1, static_cast<int>(std::lround(mm / s)))});
+    }
+    S.brim = support::brim_paths(asks, all, w, s);
+  }
+  if (S.skirt_around.empty() || (S.brim.empty() && (S.support.empty() || S.support[0].area_mm2 <= 0))) return;
+  geo::Ring pts;
+  for (const auto& r : S.skirt_around) pts.insert(pts.end(), r.begin(), r.end());
+  for (const auto& b : S.brim) pts.insert(pts.end(), b.pts.begin(), b.pts.end());
+  if (!S.support.empty())
+    for (const Rings* rs : {&S.support[0].base, &S.support[0].interface, &S.support[0].tree})
+      for (const auto& r : *rs) pts.insert(pts.end(), r.begin(), r.end());
+  S.skirt_around = toolpath::convex_hull(std::move(pts));
+}
+
+}  // namespace
+
+Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report, const SupportPassOptions& o) {
+  const size_t n = S.layers.size();
+  std::vector<LayerSupport> decided(n);
+  std::mutex mu;
+  Status failed = ok_status();
+  int failed_at = INT32_MAX;
+  tbb::parallel_for(size_t{0}, n, [&](size_t L) {
+    Status s = decide_layer(S, C, static_cast<int>(L), decided[L]);
+    if (s) return;
+    std::lock_guard lock(mu);
+    if (static_cast<int>(L) < failed_at) failed = s, failed_at = static_cast<int>(L);  // the lowest layer's error
+  });
+  if (!failed) return failed;
+  Contacts c = place_contacts(S, decided);
+  S.support.clear();
+  if (c.any_normal || c.any_tree) grow_support(S, decided, c, report, o);
+  if (Status s = warn_unsupported(S, c.air, report, o); !s) return s;
+  if (n > 0) plan_brim(S, decided[0]);
+  return ok_status();
+}
+
+}  // namespace tranche::plan

@@ -1,0 +1,44 @@
+// Overhangs: the part of an island that rests on nothing, the first question of support
+// material. An island leans out over the layer below by at most `reach` (the layer's height
+// times tan(support_angle), the angle from vertical) before it needs holding up; what lies
+// further out is an overhang, unless it is a bridge (held on two sides and short enough to span)
+// or a speck smaller than the nozzle. Pure geometry on model units: the rules' decisions arrive
+// as an OverhangSpec (geometry/plan/support_pass decides them per island).
+#pragma once
+
+#include <vector>
+
+#include "geometry/core/geom.h"
+
+namespace tranche::support {
+
+struct OverhangSpec {
+  double reach_mm = 0.2;      // how far an island may lean out over the layer below, unsupported
+  double nozzle_mm = 0.4;     // overhangs smaller than a nozzle (area under a nozzle's disc) are left alone
+  double max_bridge_mm = 10;  // a region held on two sides, no point further than half this from a hold: a bridge (0: none)
+  // Numerical slivers narrower than this (what a slope barely steeper than support_angle leaves on
+  // each layer) are dropped.
+  double min_width_mm = 0.04;
+};
+
+// Each outer ring of `region` with the holes inside it (Clipper's nesting): one region per
+// connected piece. Rings follow the usual orientation (outer CCW, holes CW).
+std::vector<geo::Rings> components(const geo::Rings& region);
+
+// Length (mm) of the closed rings of `outline` that lies inside `region`.
+double length_inside(const geo::Rings& outline, const geo::Rings& region);
+
+// Whether `piece` (one connected overhang) is a bridge over the material `below`: held by two
+// separate holds, or by one along three quarters of its outer outline (a ceiling), and no point
+// of it further than max_bridge/2 from a hold. `reach_mm`: the overhang's reach (the piece ends
+// that far from `below`); `hold_mm`: how far outside the piece a hold may lie (the reach plus a
+// little).
+bool is_bridge(const geo::Rings& piece, const geo::Rings& below, double max_bridge_mm, double reach_mm,
+               double hold_mm);
+
+// What of `island` needs support: the island minus `below_reach` (the layer below grown by the
+// reach), without slivers, specks and bridges over `below`.
+geo::Rings overhang(const geo::Rings& island, const geo::Rings& below_reach, const geo::Rings& below,
+                    const OverhangSpec& spec);
+
+}  // namespace tranche::support

@@ -1,0 +1,99 @@
+#include "geometry/support/support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/relations.h"
+
+namespace tranche::support {
+
+using geo::Rings;
+
+namespace {
+
+constexpr geo::coord_t kSimplify = 12500;  // 12.5 µm, the islands' own resolution
+
+Rings closing(const Rings& r, double mm) { return mm > 0 ? toolpath::offset(toolpath::offset(r, mm), -mm) : r; }
+Rings opening(const Rings& r, double mm) { return mm > 0 ? toolpath::offset_open(r, 0, mm) : r; }
+
+// Union of the part below each layer (0..k), for bed-only contacts: computed only when one asks.
+std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
+  std::vector<Rings> out(layers.size());
+  Rings acc;
+  for (size_t k = 0; k < layers.size(); ++k) {
+    acc = toolpath::simplify(toolpath::union_of(acc, toolpath::material(layers[k])), kSimplify);
+    out[k] = acc;
+  }
+  return out;
+}
+
+}  // namespace
+
+ProjectResult project(const ProjectInput& in) {
+  const size_t n = in.layers.size();
+  ProjectResult res;
+  res.layers.resize(n);
+  const bool any_bed_only = std::any_of(in.contacts.begin(), in.contacts.end(), [](const auto& cs) {
+    return std::any_of(cs.begin(), cs.end(), [](const Contact& c) { return c.bed_only; });
+  });
+  const std::vector<Rings> foot = any_bed_only ? footprints(in.layers) : std::vector<Rings>{};
+  std::vector<Rings> iface_src(n);
+  Rings column;
+  for (size_t k = n; k-- > 0;) {
+    const Rings part = toolpath::material(in.layers[k]);
+    if (k < in.contacts.size())
+      for (const Contact& c : in.contacts[k]) {
+        Rings r = toolpath::simplify(c.region, kSimplify);  // once: slope slivers carry arcs of the reach
+        if (c.bed_only) {
+          Rings kept = toolpath::difference(r, foot[k]);
+          res.blocked_mm2 += std::max(0.0, toolpath::area_mm2(r) - toolpath::area_mm2(kept));
+          r = std::move(kept);
+        }
+        if (r.empty()) continue;
+        if (in.columns) column.insert(column.end(), r.begin(), r.end());
+        for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
+          iface_src[k - static_cast<size_t>(j)].insert(iface_src[k - static_cast<size_t>(j)].end(), r.begin(), r.end());
+      }
+    if (!in.columns) column = iface_src[k];  // the interface alone, layer by layer
+    if (column.empty()) continue;
+    column = toolpath::difference(toolpath::union_of(column), part);
+    if (!in.bed.empty()) {
+      Rings on = toolpath::intersection(column, in.bed);
+      res.off_bed_mm2 += std::max(0.0, toolpath::area_mm2(column) - toolpath::area_mm2(on));
+      column = std::move(on);
+    }
+    // Simplified for printing only: done on the column itself, it would erode it layer after layer.
+    Rings printed = toolpath::difference(toolpath::simplify(column, kSimplify),
+                                         k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : part);
+    for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
+      printed = toolpath::difference(printed, toolpath::material(in.layers[k - static_cast<size_t>(g)]));
+    SupportLayer& out = res.layers[k];
+    // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
+    Rings iface = iface_src[k].empty()
+                      ? Rings{}
+                      : toolpath::intersection(printed, closing(toolpath::union_of(iface_src[k]), 0.5 * in.merge_mm));
+    out.interface = opening(iface, 0.5 * in.min_width_mm);
+    out.base = opening(toolpath::difference(printed, out.interface), 0.5 * in.min_width_mm);
+    out.area_mm2 = toolpath::area_mm2(out.base) + toolpath::area_mm2(out.interface);
+  }
+  return res;
+}
+
+Rings bed_region(bool circular, double min_x, double min_y, double max_x, double max_y, const geo::Point& shift) {
+  geo::Ring r;
+  if (!circular) {
+    for (auto [x, y] : {std::pair{min_x, min_y}, {max_x, min_y}, {max_x, max_y}, {min_x, max_y}})
+      r.push_back(geo::Point(geo::to_units(x) - shift.X, geo::to_units(y) - shift.Y));
+  } else {
+    const double cx = 0.5 * (min_x + max_x), cy = 0.5 * (min_y + max_y), rad = 0.5 * (max_x - min_x);
+    for (int i = 0; i < 256; ++i) {
+      const double a = 2 * std::numbers::pi * i / 256;  // inscribed: never past the real bed
+      r.push_back(geo::Point(geo::to_units(cx + rad * std::cos(a)) - shift.X, geo::to_units(cy + rad * std::sin(a)) - shift.Y));
+    }
+  }
+  return {r};
+}
+
+}  // namespace tranche::support

@@ -1,0 +1,206 @@
+// End to end: support material and the brim on the G-code of constructed models with
+// overhangs (a mushroom, a stem with a ledge under a cap), steered by --set and by rules.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "apps/slice_command.h"
+#include "gcode_reader.h"
+#include "geometry/mesh/primitives.h"
+#include "geometry/mesh/stl.h"
+#include "tests/support/fixtures.h"
+
+using namespace tranche;
+
+namespace {
+
+struct Run {
+  Result<pipeline::SliceSummary> result = Error{"", "not run"};
+  std::vector<Warning> warnings;
+  test::Gcode g;
+};
+
+Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
+        std::vector<std::pair<std::string, std::string>> sets, const std::string& rules = "", bool strict = false) {
+  pipeline::SliceOptions o;
+  o.quiet = true;
+  o.strict = strict;
+  o.model = (dir / (name + ".stl")).string();
+  REQUIRE(geo::write_stl_binary(o.model, mesh).ok());
+  o.output_gcode = (dir / (name + ".gcode")).string();
+  if (!rules.empty()) {
+    o.rules.push_back((dir / (name + ".rules")).string());
+    std::ofstream(o.rules.back()) << rules;
+  }
+  o.sets = {{"skirt_loops", "0"}};
+  o.sets.insert(o.sets.end(), sets.begin(), sets.end());
+  Report report;
+  Run r;
+  r.result = app::slice(o, report);
+  r.warnings = report.warnings();
+  if (r.result.ok()) r.g = test::read_gcode(o.output_gcode);
+  return r;
+}
+
+// A 4 mm square stem 10 mm high under a 20 mm square cap 2 mm thick: centred on the bed (100, 100).
+geo::Mesh mushroom() {
+  geo::Mesh m = geo::box({4, 4, 10}, {8, 8, 0});
+  geo::append(m, geo::box({20, 20, 2}, {0, 0, 10}));
+  return m;
+}
+
+bool extrudes(const test::Move& m) { return m.has_xy && m.de > 0; }
+bool is_support(const test::Move& m) { return m.type.rfind("Support material", 0) == 0; }
+
+// Distance from (x, y) to the axis-aligned rectangle [x0, x1] x [y0, y1] (0 inside).
+double to_rect(double x, double y, double x0, double y0, double x1, double y1) {
+  double dx = std::max({x0 - x, 0.0, x - x1}), dy = std::max({y0 - y, 0.0, y - y1});
+  return std::hypot(dx, dy);
+}
+
+bool has_warning(const Run& r, const std::string& code) {
+  return std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) { return w.code == code; });
+}
+
+}  // namespace
+
+TEST_CASE("support: a mushroom's cap stands on support, kept off the stem and below the cap") {
+  test::TempDir dir("support-mushroom");
+  Run r = run(dir, "m", mushroom(), {{"support", "normal"}});
+  REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
+  CHECK(r.g.contains(";TYPE:Support material\n"));
+  CHECK(r.g.contains(";TYPE:Support material interface\n"));
+  CHECK_FALSE(has_warning(r, "unsupported-overhang"));
+  int support_moves = 0, interface_moves = 0;
+  double top = 0;
+  for (const auto& m : r.g.moves) {
+    if (!extrudes(m) || !is_support(m)) continue;
+    ++support_moves;
+    if (m.type == "Support material interface") ++interface_moves;
+    const double z = r.g.layer_z.at(m.layer);
+    top = std::max(top, z);
+    // The stem is x, y in [98, 102]: beads keep the 0.5 mm xy gap (less half a bead).
+    for (auto [x, y] : {std::pair{m.x0, m.y0}, {m.x, m.y}}) {
+      CHECK(to_rect(x, y, 98, 98, 102, 102) >= 0.5 - 0.225 - 1e-3);
+      CHECK(to_rect(x, y, 90, 90, 110, 110) <= 1e-3);  // under the cap, nowhere else
+    }
+  }
+  CHECK(support_moves > 100);
+  CHECK(interface_moves > 20);
+  // One layer of air (support_z_gap 0.2 mm) under the cap's bottom at z = 10.
+  CHECK(top == doctest::Approx(9.8));
+  // The support starts on the bed.
+  bool on_bed = false;
+  for (const auto& m : r.g.moves) on_bed |= extrudes(m) && is_support(m) && m.layer == 0;
+  CHECK(on_bed);
+}
+
+TEST_CASE("support: off by default, the overhang is said once; --strict refuses it") {
+  test::TempDir dir("support-off");
+  Run r = run(dir, "m", mushroom(), {});
+  REQUIRE(r.result.ok());
+  CHECK_FALSE(r.g.contains(";TYPE:Support material"));
+  REQUIRE(has_warning(r, "unsupported-overhang"));
+  for (const auto& w : r.warnings)
+    if (w.code == "unsupported-overhang") {
+      CHECK(w.message.find("printed in the air") != std::string::npos);
+      CHECK(w.message.find("support = normal") != std::string::npos);
+      CHECK(w.where.find("layer 50") != std::string::npos);  // the cap's first layer
+    }
+  Run s = run(dir, "s", mushroom(), {}, "", true);
+  REQUIRE_FALSE(s.result.ok());
+  CHECK(s.result.error().message.find("overhang printed in the air") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir / "s.gcode"));
+}
+
+TEST_CASE("support: a rule blocks support below a height, another turns it on (blockers and enforcers as rules)") {
+  test::TempDir dir("support-rules");
+  // A ledge 6 mm long at z 3..4 on the stem's -x side, under the cap.
+  geo::Mesh m = mushroom();
+  geo::append(m, geo::box({6, 4, 1}, {2, 8, 3}));
+  auto under_ledge = [](const test::Move& mv) {  // the middle of the move under the ledge: x 92..98, y 98..102
+    return to_rect(0.5 * (mv.x0 + mv.x), 0.5 * (mv.y0 + mv.y), 92, 98, 98, 102) == 0;
+  };
+  const std::string rules = R"(
+rule "support on" { support = normal }
+rule "no support below 5 mm" when layer.z_bottom < 5 mm { support = none }
+)";
+  Run blocked = run(dir, "b", m, {}, rules);
+  REQUIRE_MESSAGE(blocked.result.ok(), (blocked.result.ok() ? "" : blocked.result.error().to_string()));
+  Run all = run(dir, "a", m, {{"support", "normal"}});
+  REQUIRE(all.result.ok());
+  auto count = [&](const Run& r, bool low) {
+    int n = 0;
+    for (const auto& mv : r.g.moves)
+      if (extrudes(mv) && is_support(mv) && under_ledge(mv) && (r.g.layer_z.at(mv.layer) < 2.9) == low) ++n;
+    return n;
+  };
+  CHECK(count(all, true) > 10);     // support under the ledge when nothing blocks it
+  CHECK(count(blocked, true) == 0);  // blocked: the ledge (z 3) is below 5 mm
+  CHECK(count(blocked, false) > 10);  // the cap's column still stands on the ledge
+  CHECK(has_warning(blocked, "unsupported-overhang"));  // the blocked ledge is said
+}
+
+TEST_CASE("support: speed and kind reachable by rules like any path") {
+  test::TempDir dir("support-speed");
+  Run r = run(dir, "m", mushroom(), {{"support", "normal"}, {"min_layer_time", "0"}},
+              "rule \"slow support\" when path.kind == support and layer.index > 0 { speed = 17 mm/s }\n"
+              "rule \"sparse support\" when island.support { support_density = 10% }\n");
+  REQUIRE(r.result.ok());
+  int slow = 0, other = 0;
+  for (const auto& m : r.g.moves)
+    if (extrudes(m) && m.type == "Support material" && m.layer > 0) (std::abs(m.f - 17 * 60) < 1 ? slow : other)++;
+  CHECK(slow > 50);
+  CHECK(other == 0);
+}
+
+TEST_CASE("brim: loops on the first layer round the part, the skirt outside them") {
+  test::TempDir dir("brim");
+  Run r = run(dir, "b", geo::box({10, 10, 2}), {{"brim_width", "3"}, {"skirt_loops", "1"}});
+  REQUIRE(r.result.ok());
+  CHECK(r.g.contains(";TYPE:Skirt/Brim\n"));
+  double brim_far = 0, skirt_near = 1e9;
+  int brim_moves = 0;
+  for (const auto& m : r.g.moves) {
+    if (!extrudes(m) || m.layer != 0 || m.type != "Skirt/Brim") continue;
+    const double d = to_rect(m.x, m.y, 95, 95, 105, 105);
+    if (d < 4) brim_far = std::max(brim_far, d), ++brim_moves;
+    else skirt_near = std::min(skirt_near, d);
+  }
+  CHECK(brim_moves > 20);
+  CHECK(brim_far == doctest::Approx(3).epsilon(0.1));  // 3 mm of brim
+  CHECK(skirt_near >= 3 + 3 - 0.3);                    // the skirt 3 mm beyond the brim
+  Run none = run(dir, "n", geo::box({10, 10, 2}), {});
+  REQUIRE(none.result.ok());
+  CHECK_FALSE(none.g.contains(";TYPE:Skirt/Brim"));
+}
+
+TEST_CASE("support: tree branches hold the cap with far less plastic than columns, clear of the stem") {
+  test::TempDir dir("support-tree");
+  Run normal = run(dir, "n", mushroom(), {{"support", "normal"}});
+  Run tree = run(dir, "t", mushroom(), {{"support", "tree"}});
+  REQUIRE_MESSAGE(tree.result.ok(), (tree.result.ok() ? "" : tree.result.error().to_string()));
+  REQUIRE(normal.result.ok());
+  auto plastic = [](const Run& r) {
+    double e = 0;
+    for (const auto& m : r.g.moves)
+      if (extrudes(m) && m.type == "Support material") e += m.de;
+    return e;
+  };
+  CHECK(plastic(tree) > 0);
+  CHECK(plastic(tree) < 0.6 * plastic(normal));
+  CHECK(tree.g.contains(";TYPE:Support material interface\n"));
+  bool on_bed = false;
+  double top = 0;
+  for (const auto& m : tree.g.moves) {
+    if (!extrudes(m) || !is_support(m)) continue;
+    on_bed |= m.layer == 0;
+    top = std::max(top, tree.g.layer_z.at(m.layer));
+    CHECK(to_rect(m.x, m.y, 98, 98, 102, 102) >= 0.5 - 0.225 - 1e-3);
+  }
+  CHECK(on_bed);
+  CHECK(top == doctest::Approx(9.8));
+  CHECK_FALSE(has_warning(tree, "unsupported-overhang"));
+}
