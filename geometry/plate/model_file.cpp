@@ -75,7 +75,9 @@ Result<std::vector<Object>> parse_model_file(std::string_view bytes, const std::
 Result<std::vector<Object>> load_model_file(const std::string& path, Report& report) {
   // An STL refused from its header (a triangle count its size cannot hold) is never read whole.
   auto bytes = geo::read_file_bytes(path, [&](std::string_view head, std::optional<uint64_t> size) {
-    if (detect_format(head, size.value_or(head.size())).format != Format::Stl) return Result<uint64_t>(UINT64_MAX);
+    const Detected d = detect_format(head, size.value_or(head.size()));
+    // Not an STL, or unsure bytes named .3mf (parse() says what they are in 3MF words): read whole.
+    if (d.format != Format::Stl || (!d.sure && extension(path) == ".3mf")) return Result<uint64_t>(UINT64_MAX);
     return geo::check_stl_head(head, size, path, report);
   });
   if (!bytes) return bytes.error();
