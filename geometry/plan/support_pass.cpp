@@ -213,7 +213,7 @@ std::vector<Rings> keep_out(const setup::PrintSetup& S, const std::vector<LayerS
       Rings g = toolpath::offset(shape_of(S.layers[L].islands[i]), decided[L].islands[i].xy_gap);
       grown.insert(grown.end(), g.begin(), g.end());
     }
-    out[L] = toolpath::union_of(grown);
+    out[L] = toolpath::simplify(toolpath::union_of(grown), 25000);  // 25 µm: support needs no finer
   });
   return out;
 }

@@ -1,5 +1,7 @@
 #include "geometry/support/support.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -13,10 +15,21 @@ using geo::Rings;
 
 namespace {
 
-constexpr geo::coord_t kSimplify = 12500;  // 12.5 µm, the islands' own resolution
+constexpr geo::coord_t kSimplify = 12500;     // 12.5 µm, the islands' own resolution: the columns
+constexpr geo::coord_t kPrintSimplify = 50000;  // 50 µm: what support prints (a bead is 450 µm)
 
-Rings closing(const Rings& r, double mm) { return mm > 0 ? toolpath::offset(toolpath::offset(r, mm), -mm) : r; }
-Rings opening(const Rings& r, double mm) { return mm > 0 ? toolpath::offset_open(r, 0, mm) : r; }
+// Offsets with arcs to 25 µm (the toolpaths' 5 µm would be wasted on support: every vertex of the
+// part's outline, grown by its gap, comes back through here).
+Rings coarse_offset(const Rings& r, double mm) {
+  Rings out;
+  if (r.empty()) return out;
+  ClipperLib::ClipperOffset co(2.0, 25000);
+  co.AddPaths(r, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  co.Execute(out, mm * geo::kUnitsPerMm);
+  return out;
+}
+Rings closing(const Rings& r, double mm) { return mm > 0 ? coarse_offset(coarse_offset(r, mm), -mm) : r; }
+Rings opening(const Rings& r, double mm) { return mm > 0 ? coarse_offset(coarse_offset(r, -mm), mm) : r; }
 
 // Union of the part below each layer (0..k), for bed-only contacts: computed only when one asks.
 std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
@@ -31,18 +44,47 @@ std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
 
 }  // namespace
 
+namespace {
+
+// What layer k prints of its column: the part and its gaps cut out, the interface under the
+// contacts, the rest sparse. Layers are independent here: run in parallel.
+SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& material, size_t k, const Rings& column,
+                         const Rings& iface_src) {
+  SupportLayer out;
+  if (column.empty()) return out;
+  const geo::BBox2 box = toolpath::bbox(column);
+  const Rings& keep = k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : material[k];
+  // Simplified for printing only: done on the column itself, it would erode it layer after layer.
+  // (The gaps are cut after: simplifying there would cut chords into them.)
+  Rings printed = toolpath::difference(toolpath::simplify(column, kPrintSimplify), toolpath::near(keep, box));
+  for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
+    printed = toolpath::difference(printed, toolpath::near(material[k - static_cast<size_t>(g)], box));
+  // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
+  Rings iface = iface_src.empty() ? Rings{}
+                                  : toolpath::intersection(printed, closing(toolpath::union_of(iface_src), 0.5 * in.merge_mm));
+  out.interface = opening(iface, 0.5 * in.min_width_mm);
+  out.base = opening(toolpath::difference(printed, out.interface), 0.5 * in.min_width_mm);
+  out.area_mm2 = toolpath::area_mm2(out.base) + toolpath::area_mm2(out.interface);
+  return out;
+}
+
+}  // namespace
+
 ProjectResult project(const ProjectInput& in) {
   const size_t n = in.layers.size();
+  std::vector<Rings> material(n);  // each layer's, computed once
+  tbb::parallel_for(size_t{0}, n, [&](size_t k) { material[k] = toolpath::material(in.layers[k]); });
   ProjectResult res;
   res.layers.resize(n);
   const bool any_bed_only = std::any_of(in.contacts.begin(), in.contacts.end(), [](const auto& cs) {
     return std::any_of(cs.begin(), cs.end(), [](const Contact& c) { return c.bed_only; });
   });
   const std::vector<Rings> foot = any_bed_only ? footprints(in.layers) : std::vector<Rings>{};
-  std::vector<Rings> iface_src(n);
+  std::vector<Rings> iface_src(n), columns(n);
   Rings column;
+  // Top-down, serial: each layer's column is the one above, plus its contacts, less the part.
   for (size_t k = n; k-- > 0;) {
-    const Rings part = toolpath::material(in.layers[k]);
+    bool added = false;
     if (k < in.contacts.size())
       for (const Contact& c : in.contacts[k]) {
         Rings r = toolpath::simplify(c.region, kSimplify);  // once: slope slivers carry arcs of the reach
@@ -52,32 +94,22 @@ ProjectResult project(const ProjectInput& in) {
           r = std::move(kept);
         }
         if (r.empty()) continue;
-        if (in.columns) column.insert(column.end(), r.begin(), r.end());
+        if (in.columns) column.insert(column.end(), r.begin(), r.end()), added = true;
         for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
           iface_src[k - static_cast<size_t>(j)].insert(iface_src[k - static_cast<size_t>(j)].end(), r.begin(), r.end());
       }
-    if (!in.columns) column = iface_src[k];  // the interface alone, layer by layer
+    if (!in.columns) column = iface_src[k], added = true;  // the interface alone, layer by layer
     if (column.empty()) continue;
-    column = toolpath::difference(toolpath::union_of(column), part);
+    if (added) column = toolpath::union_of(column);
+    column = toolpath::difference(column, toolpath::near(material[k], toolpath::bbox(column)));
     if (!in.bed.empty()) {
       Rings on = toolpath::intersection(column, in.bed);
       res.off_bed_mm2 += std::max(0.0, toolpath::area_mm2(column) - toolpath::area_mm2(on));
       column = std::move(on);
     }
-    // Simplified for printing only: done on the column itself, it would erode it layer after layer.
-    Rings printed = toolpath::difference(toolpath::simplify(column, kSimplify),
-                                         k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : part);
-    for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
-      printed = toolpath::difference(printed, toolpath::material(in.layers[k - static_cast<size_t>(g)]));
-    SupportLayer& out = res.layers[k];
-    // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
-    Rings iface = iface_src[k].empty()
-                      ? Rings{}
-                      : toolpath::intersection(printed, closing(toolpath::union_of(iface_src[k]), 0.5 * in.merge_mm));
-    out.interface = opening(iface, 0.5 * in.min_width_mm);
-    out.base = opening(toolpath::difference(printed, out.interface), 0.5 * in.min_width_mm);
-    out.area_mm2 = toolpath::area_mm2(out.base) + toolpath::area_mm2(out.interface);
+    columns[k] = column;
   }
+  tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k]); });
   return res;
 }
 
