@@ -384,3 +384,25 @@ TEST_CASE("example name-plate: a colour change where the letters begin, print-le
   auto first = layer_lines(g, 0);
   CHECK(std::find(first.begin(), first.end(), "M600 ; colour change") == first.end());
 }
+
+TEST_CASE("example supports: trees under the table's top, none under the low ledge, the interface slower") {
+  TempDir dir("ex-supports");
+  auto g = run_example(dir, "supports").gcode("supports");
+  // The model is centred: x 80-120, y 90-110; the ledge round the front left leg: x 80-85.8, y 90-95.8.
+  int support = 0, iface = 0, under_ledge = 0;
+  double top = 0;
+  for (const auto& m : g.moves) {
+    if (!extrudes(m) || m.type.rfind("Support material", 0) != 0) continue;
+    m.type == "Support material" ? ++support : ++iface;
+    top = std::max(top, g.layer_z.at(m.layer));
+    const double x = 0.5 * (m.x0 + m.x), y = 0.5 * (m.y0 + m.y);
+    // Blocked: no contact with the ledge, so no interface under it (branches from the top may pass by).
+    if (m.type == "Support material interface" && x > 80 && x < 85.8 && y > 90 && y < 95.8 && g.layer_z.at(m.layer) < 4)
+      ++under_ledge;
+    if (m.type == "Support material interface") CHECK(m.f <= 1800);
+  }
+  CHECK(support > 100);
+  CHECK(iface > 20);
+  CHECK(under_ledge == 0);
+  CHECK(top == doctest::Approx(14.8));
+}
