@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Support material against PrusaSlicer's: each model with overhangs (generated: a mushroom, a
 # bracket's ledge, a slab spanning 30 mm, a 53° funnel; PrusaSlicer's bunny; the capped Stanford
-# bunny) sliced by tranche without support, with support=normal, and by PrusaSlicer with
+# bunny) sliced by tranche without support, with support=normal and support=tree, and by PrusaSlicer with
 # --support-material --support-material-auto, all on the benchmark settings (bench/peers/). gcheck
 # measures what each lays on air (its `unsupported` line); support_row.py the support's plastic
 # and trips; time is user seconds. One table, then tranche's ratios to PrusaSlicer.
@@ -21,11 +21,12 @@ export LC_ALL=C
 rows="$out/rows.tsv"
 : >"$rows"
 while read -r name model; do
-  for s in tranche_none tranche prusa; do
+  for s in tranche_none tranche tranche_tree prusa; do
     g="$out/$name.$s.gcode"
     case $s in
       tranche_none) peer_cmd tranche "$model" "$g" ;;
       tranche) peer_cmd tranche "$model" "$g"; CMD+=(--set support=normal) ;;
+      tranche_tree) peer_cmd tranche "$model" "$g"; CMD+=(--set support=tree) ;;
       prusa) command -v prusa-slicer >/dev/null || continue
         peer_cmd prusa "$model" "$g"; CMD=("${CMD[@]:0:1}" --support-material --support-material-auto "${CMD[@]:1}") ;;
     esac

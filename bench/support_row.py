@@ -80,16 +80,18 @@ def table(path):
         print('  '.join(c.ljust(w) for c, w in zip(r, widths)))
     # Ratios of tranche with support to PrusaSlicer with support, per model.
     by = {(r[0], r[1]): r for r in rows if len(r) >= 8}
-    print('\ntranche (support=normal) / PrusaSlicer (--support-material --support-material-auto):')
-    for m in dict.fromkeys(r[0] for r in rows):
-        t, p = by.get((m, 'tranche')), by.get((m, 'prusa'))
-        if not t or not p:
-            continue
-        def ratio(i):
-            a, b = float(t[i]), float(p[i])
-            return 'n/a' if b == 0 else '%.2f' % (a / b)
-        print('  %-22s support plastic %s  support trips %s  time %s  air %s vs %s mm²' % (
-            m, ratio(5), ratio(6), ratio(7), t[2], p[2]))
+    for mine in ('tranche', 'tranche_tree'):
+        print('\n%s / PrusaSlicer (--support-material --support-material-auto, its normal support):' % mine)
+        for m in dict.fromkeys(r[0] for r in rows):
+            t, p = by.get((m, mine)), by.get((m, 'prusa'))
+            if not t or not p:
+                continue
+
+            def ratio(i):
+                a, b = float(t[i]), float(p[i])
+                return 'n/a' if b == 0 else '%.2f' % (a / b)
+            print('  %-22s support plastic %s  support trips %s  time %s  air %s vs %s mm²' % (
+                m, ratio(5), ratio(6), ratio(7), t[2], p[2]))
 
 
 if __name__ == '__main__':
