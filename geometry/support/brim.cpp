@@ -1,8 +1,8 @@
 #include "geometry/support/brim.h"
 
 #include <algorithm>
-#include <cmath>
 
+#include "geometry/support/overhang.h"
 #include "geometry/toolpath/clip.h"
 
 namespace tranche::support {
@@ -15,18 +15,8 @@ namespace {
 std::vector<BrimPath> cut(const geo::Ring& loop, const Rings& obstacles) {
   const Rings near = toolpath::near(obstacles, geo::bbox(loop));
   if (near.empty()) return {{loop, true}};
-  ClipperLib::Clipper c;
-  geo::Ring line = loop;
-  line.push_back(loop.front());
-  c.AddPath(line, ClipperLib::ptSubject, false);
-  c.AddPaths(near, ClipperLib::ptClip, true);
-  ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  Rings pieces;
-  ClipperLib::OpenPathsFromPolyTree(tree, pieces);
-  double kept = 0;
-  for (const auto& p : pieces)
-    for (size_t i = 1; i < p.size(); ++i) kept += std::hypot(geo::to_mm(p[i].X - p[i - 1].X), geo::to_mm(p[i].Y - p[i - 1].Y));
+  Rings pieces = clip_loops({loop}, near, false);
+  const double kept = lines_length(pieces);
   if (kept >= geo::length_mm(loop) - 1e-3) return {{loop, true}};  // nothing was cut
   std::vector<BrimPath> out;
   for (auto& p : pieces)

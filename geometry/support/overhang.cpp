@@ -24,25 +24,34 @@ std::vector<Rings> components(const Rings& region) {
   return out;
 }
 
-double length_inside(const Rings& outline, const Rings& region) {
-  if (outline.empty() || region.empty()) return 0;
+Rings clip_loops(const Rings& loops, const Rings& region, bool inside) {
   ClipperLib::Clipper c;
-  for (const geo::Ring& r : outline) {
+  for (const geo::Ring& r : loops) {
     if (r.size() < 2) continue;
-    geo::Ring closed = r;
-    closed.push_back(r.front());  // as an open line: the whole loop
-    c.AddPath(closed, ClipperLib::ptSubject, false);
+    geo::Ring line = r;
+    line.push_back(r.front());  // as an open line: the whole loop
+    c.AddPath(line, ClipperLib::ptSubject, false);
   }
   c.AddPaths(region, ClipperLib::ptClip, true);
   ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  c.Execute(inside ? ClipperLib::ctIntersection : ClipperLib::ctDifference, tree, ClipperLib::pftNonZero,
+            ClipperLib::pftNonZero);
   Rings lines;
   ClipperLib::OpenPathsFromPolyTree(tree, lines);
+  return lines;
+}
+
+double lines_length(const Rings& lines) {
   double len = 0;
   for (const geo::Ring& l : lines)
     for (size_t i = 1; i < l.size(); ++i)
       len += std::hypot(geo::to_mm(l[i].X - l[i - 1].X), geo::to_mm(l[i].Y - l[i - 1].Y));
   return len;
+}
+
+double length_inside(const Rings& outline, const Rings& region) {
+  if (outline.empty() || region.empty()) return 0;
+  return lines_length(clip_loops(outline, region, true));
 }
 
 bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double reach_mm, double hold_mm) {

@@ -25,6 +25,11 @@ struct OverhangSpec {
 // connected piece. Rings follow the usual orientation (outer CCW, holes CW).
 std::vector<geo::Rings> components(const geo::Rings& region);
 
+// The closed rings of `loops`, taken as lines, inside `region` (inside = true) or outside it:
+// open pieces.
+geo::Rings clip_loops(const geo::Rings& loops, const geo::Rings& region, bool inside);
+// Length (mm) of open lines.
+double lines_length(const geo::Rings& lines);
 // Length (mm) of the closed rings of `outline` that lies inside `region`.
 double length_inside(const geo::Rings& outline, const geo::Rings& region);
 

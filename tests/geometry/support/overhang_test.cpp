@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "fixtures.h"
+#include "tests/geometry/toolpath/fixtures.h"
 #include "geometry/support/brim.h"
 #include "geometry/support/overhang.h"
 #include "geometry/toolpath/clip.h"

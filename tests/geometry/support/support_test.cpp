@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
-#include "fixtures.h"
+#include "tests/geometry/support/project_input.h"
+#include "tests/geometry/toolpath/fixtures.h"
 #include "geometry/support/support.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/relations.h"
@@ -21,13 +22,6 @@ std::vector<geo::Layer> mushroom() {
 
 geo::Rings cap_overhang() { return toolpath::difference({rect(0, 0, 12, 12)}, toolpath::offset({rect(4, 4, 8, 8)}, 0.2)); }
 
-ProjectInput input(const std::vector<geo::Layer>& layers, double xy_gap = 0.5) {
-  ProjectInput in;
-  in.layers = layers;
-  in.contacts.resize(layers.size());
-  for (const auto& l : layers) in.keep_out.push_back(toolpath::offset(toolpath::material(l), xy_gap));
-  return in;
-}
 
 double area(const geo::Rings& r) { return toolpath::area_mm2(r); }
 
@@ -35,7 +29,7 @@ double area(const geo::Rings& r) { return toolpath::area_mm2(r); }
 
 TEST_CASE("support: a column under a mushroom's cap, down to the bed, interface at its top") {
   auto layers = mushroom();
-  ProjectInput in = input(layers);
+  ProjectInput in = test::project_input(layers);
   in.contacts[8].push_back({cap_overhang(), 2, false});  // layer 10's overhang, one layer of air below it
   ProjectResult r = project(in);
   REQUIRE(r.layers.size() == 15);
@@ -62,7 +56,7 @@ TEST_CASE("support: a column stands on the part's top with a gap, or not at all 
   for (size_t k = 10; k < 13; ++k) layers[k].islands[0].shape.outer = rect(0, 0, 10, 10);
   geo::Rings shelf = toolpath::difference({rect(0, 0, 10, 10)}, toolpath::offset({rect(0, 0, 5, 10)}, 0.2));
   {
-    ProjectInput in = input(layers);
+    ProjectInput in = test::project_input(layers);
     in.contacts[8].push_back({shelf, 2, false});
     ProjectResult r = project(in);
     CHECK(r.layers[8].area_mm2 > 10);
@@ -71,7 +65,7 @@ TEST_CASE("support: a column stands on the part's top with a gap, or not at all 
     for (size_t k = 0; k < 5; ++k) CHECK(r.layers[k].area_mm2 == 0);  // inside the block: none
   }
   {
-    ProjectInput in = input(layers);
+    ProjectInput in = test::project_input(layers);
     in.contacts[8].push_back({shelf, 2, true});
     ProjectResult r = project(in);
     for (const auto& s : r.layers) CHECK(s.area_mm2 == 0);
@@ -81,7 +75,7 @@ TEST_CASE("support: a column stands on the part's top with a gap, or not at all 
 
 TEST_CASE("support: off the bed it is cut, and said") {
   auto layers = mushroom();
-  ProjectInput in = input(layers);
+  ProjectInput in = test::project_input(layers);
   in.contacts[8].push_back({cap_overhang(), 2, false});
   in.bed = bed_region(false, 0, 0, 6, 200, geo::Point(0, 0));  // a bed ending at x = 6 mm
   ProjectResult r = project(in);

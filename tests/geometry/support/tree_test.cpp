@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
-#include "fixtures.h"
+#include "tests/geometry/support/project_input.h"
+#include "tests/geometry/toolpath/fixtures.h"
 #include "geometry/support/tree.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/relations.h"
@@ -18,13 +19,6 @@ std::vector<geo::Layer> mushroom() {
   return layers;
 }
 
-ProjectInput input(const std::vector<geo::Layer>& layers) {
-  ProjectInput in;
-  in.layers = layers;
-  in.contacts.resize(layers.size());
-  for (const auto& l : layers) in.keep_out.push_back(toolpath::offset(toolpath::material(l), 0.5));
-  return in;
-}
 
 double area(const geo::Rings& r) { return toolpath::area_mm2(r); }
 
@@ -32,7 +26,7 @@ double area(const geo::Rings& r) { return toolpath::area_mm2(r); }
 
 TEST_CASE("tree: branches from tips under a cap merge on their way to the bed, clear of the stem") {
   auto layers = mushroom();
-  ProjectInput in = input(layers);
+  ProjectInput in = test::project_input(layers);
   const geo::Rings cap = toolpath::difference({rect(0, 0, 24, 24)}, toolpath::offset({rect(10, 10, 14, 14)}, 0.2));
   in.contacts[36].push_back({cap, 0, false});
   TreeResult r = grow_trees(in, TreeSpec{});
@@ -55,7 +49,7 @@ TEST_CASE("tree: a branch that meets the part ends on it, or takes its tree with
   for (size_t k = 10; k < 30; ++k) layers[k].islands[0].shape.outer = rect(8, 8, 12, 12);
   const geo::Rings slab = toolpath::difference({rect(0, 0, 20, 20)}, toolpath::offset({rect(8, 8, 12, 12)}, 0.2));
   {
-    ProjectInput in = input(layers);
+    ProjectInput in = test::project_input(layers);
     in.contacts[27].push_back({slab, 0, false});
     TreeResult r = grow_trees(in, TreeSpec{});
     CHECK(area(r.branches[20]) > 3);
@@ -64,7 +58,7 @@ TEST_CASE("tree: a branch that meets the part ends on it, or takes its tree with
     CHECK(r.blocked_mm2 == 0);
   }
   {
-    ProjectInput in = input(layers);
+    ProjectInput in = test::project_input(layers);
     in.contacts[27].push_back({slab, 0, true});
     TreeResult r = grow_trees(in, TreeSpec{});
     for (const auto& b : r.branches) CHECK(b.empty());
@@ -74,7 +68,7 @@ TEST_CASE("tree: a branch that meets the part ends on it, or takes its tree with
 
 TEST_CASE("tree: a contact too small for the grid still gets a tip") {
   auto layers = test::stack(20, 0.2, geo::Polygon{rect(0, 0, 1, 1), {}});
-  ProjectInput in = input(layers);
+  ProjectInput in = test::project_input(layers);
   in.contacts[15].push_back({{rect(5.1, 5.1, 6.9, 6.9)}, 0, false});
   TreeResult r = grow_trees(in, TreeSpec{});
   CHECK(r.tips == 1);
