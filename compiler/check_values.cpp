@@ -24,10 +24,10 @@ void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
 }  // namespace
 
 // E0212: a constant outside the property's physical range stops the slice whenever it is set.
-// (Angles are brought into [0°, 360°) instead: W206 warns about them.)
+// (Directions are brought into [0°, 360°) instead: W206 warns about them.)
 void Checker::range(const Expr& value, schema::PropId prop) {
   const auto& p = schema::property(prop);
-  if ((p.type != schema::Type::Number && p.type != schema::Type::Int) || p.unit == schema::Unit::Deg) return;
+  if ((p.type != schema::Type::Number && p.type != schema::Type::Int) || p.wraps()) return;
   std::vector<const Expr*> leaves;
   constant_leaves(value, leaves);
   for (const Expr* e : leaves) {

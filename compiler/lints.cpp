@@ -90,10 +90,10 @@ void constant_leaves(const Expr& e, std::vector<const Expr*>& out) {
   }
 }
 
-// W206: a constant angle outside the property's range (other properties: E0212, an error).
+// W206: a constant direction outside the property's range (other properties: E0212, an error).
 void range(const Expr& value, schema::PropId prop, diag::Sink& sink) {
   const auto& p = schema::property(prop);
-  if (p.unit != schema::Unit::Deg) return;
+  if (!p.wraps()) return;
   std::vector<const Expr*> leaves;
   constant_leaves(value, leaves);
   for (const Expr* e : leaves) {

@@ -117,6 +117,9 @@ struct PropInfo {
   double default_value;   // built-in default (context-dependent defaults are rules in stdlib/)
   double min, max;        // physical range; outside it the compiler warns (W-range)
   std::string_view doc;
+  // A direction (fill_angle, its range a whole turn or more) is brought into [0°, 360°); a bounded
+  // angle (support_angle: 0° to 90°) has a range like any number.
+  bool wraps() const { return unit == Unit::Deg && max - min >= 360; }
 };
 
 struct EnumInfo {

@@ -122,7 +122,7 @@ void RuleSet::analyse_constants() {
   }
   for (const auto& info : schema::properties()) {
     Range& r = ranges_[static_cast<size_t>(info.id)];
-    r.plain = info.type == schema::Type::Number && info.unit != schema::Unit::Deg;
+    r.plain = info.type == schema::Type::Number && !info.wraps();
     r.min = info.min;
     r.max = info.max;
   }
@@ -191,7 +191,7 @@ Result<double> RuleSet::check_value(schema::PropId q, double v) {
     default:
       break;
   }
-  if (info.unit == schema::Unit::Deg) {
+  if (info.wraps()) {
     v = std::fmod(v, 360.0);
     if (v < 0) v += 360.0;
     return v;
