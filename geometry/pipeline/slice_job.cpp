@@ -251,6 +251,28 @@ void name_objects(setup::PrintSetup& setup, const setup::PrintFacts& facts, cons
   }
 }
 
+// What every layer reads besides the setup, computed once before them: the script's angles (one
+// serial pass: Python calls never race and results never depend on scheduling; the cascade's
+// middle layer, kept alive by `angles`), then the support and the brim (plan/support_pass).
+Status before_layers(setup::PrintSetup& setup, const SlicedPlate& in, geo::FillAngleScript* script,
+                     std::unique_ptr<geo::ScriptAngles>& angles, ctx::Cascade& cascade, const SliceOptions& options,
+                     Progress& progress, Report& report) {
+  if (script) {
+    progress.start("fill angles");
+    auto a = geo::ScriptAngles::compute(*script, setup.layers, cascade, setup.print_ctx, in.print.props);
+    if (!a) return a.error();
+    angles = std::move(*a);
+    cascade.set_middle(angles.get());
+    progress.finish();
+  }
+  progress.start("support");
+  plan::SupportPassOptions so;
+  so.strict = options.strict;
+  if (Status s = plan::plan_support(setup, cascade, report, so); !s) return s;
+  progress.finish();
+  return ok_status();
+}
+
 // The stages after slicing, shared by STL and SVG input: islands, print setup, the script's
 // angles, then every layer planned and written.
 Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngleScript* script,
@@ -268,21 +290,7 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
   (*setup)->allow_off_bed = options.allow_off_bed;
   name_objects(**setup, in.facts, rules, report);
   std::unique_ptr<geo::ScriptAngles> angles;
-  if (script) {  // one serial pass: Python calls never race and results never depend on scheduling
-    progress.start("fill angles");
-    auto a = geo::ScriptAngles::compute(*script, (*setup)->layers, cascade, (*setup)->print_ctx, in.print.props);
-    if (!a) return a.error();
-    angles = std::move(*a);
-    cascade.set_middle(angles.get());
-    progress.finish();
-  }
-  {
-    progress.start("support");
-    plan::SupportPassOptions so;
-    so.strict = options.strict;
-    if (Status s = plan::plan_support(**setup, cascade, report, so); !s) return s.error();
-    progress.finish();
-  }
+  if (Status s = before_layers(**setup, in, script, angles, cascade, options, progress, report); !s) return s.error();
   if (!options.explain.empty()) {  // the one layer explained records provenance; the run only for a preview
     auto spec = parse_explain_spec(options.explain);
     if (!spec) return spec.error();
