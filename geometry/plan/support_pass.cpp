@@ -122,8 +122,10 @@ std::string where(const setup::PrintSetup& S, int L) {
 }
 
 // The warning for overhangs printed in the air: the worst layers, once.
+// The overhangs printed in the air, once: the worst layer, the total and the next worst ones.
+// `advice` ends the message; `code` tags the warning.
 Status warn_unsupported(const setup::PrintSetup& S, const std::vector<double>& air, Report& report,
-                        const SupportPassOptions& o) {
+                        const SupportPassOptions& o, const std::string& code, const std::string& advice) {
   constexpr double kWorth = 1.0;  // mm²: less on a layer is a speck no user would support
   std::vector<int> worst;
   double total = 0;
@@ -138,14 +140,12 @@ Status warn_unsupported(const setup::PrintSetup& S, const std::vector<double>& a
     also += fmt::format("{}{}: {:.0f} mm²", k > 1 ? "; " : "", where(S, worst[k]), air[size_t(worst[k])]);
   const std::string msg =
       worst.size() == 1
-          ? fmt::format("{:.0f} mm² of overhang printed in the air; set support = normal or tree (--set support=normal) or "
-                        "support it by a rule",
-                        total)
+          ? fmt::format("{:.0f} mm² of overhang printed in the air; {}", total, advice)
           : fmt::format("{:.0f} mm² of overhang printed in the air here, {:.0f} mm² on {} layers in all (next worst: "
-                        "{}); set support = normal or tree (--set support=normal) or support it by a rule",
-                        air[size_t(worst[0])], total, worst.size(), also);
+                        "{}); {}",
+                        air[size_t(worst[0])], total, worst.size(), also, advice);
   if (o.strict) return Error{where(S, worst[0]), msg + " (--strict makes this an error)"};
-  if (o.warn) report.warn("unsupported-overhang", where(S, worst[0]), msg);
+  if (o.warn) report.warn(code, where(S, worst[0]), msg);
   return ok_status();
 }
 
@@ -157,6 +157,7 @@ namespace {
 struct Contacts {
   support::ProjectInput normal, tree_iface, tree;  // the columns; the trees' interface; the trees' tips
   std::vector<double> air;                         // per layer, mm² printed in the air
+  std::vector<double> near_bed;                    // per layer, mm² in the air with no room for support under it
   bool any_normal = false, any_tree = false;
 };
 
@@ -170,6 +171,7 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
   }
   c.tree_iface.columns = false;
   c.air.assign(n, 0.0);
+  c.near_bed.assign(n, 0.0);
   S.overhang_area.assign(n, {});
   for (size_t L = 0; L < n; ++L) {
     S.overhang_area[L].assign(decided[L].islands.size(), 0.f);
@@ -178,9 +180,10 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       if (d.overhang.empty()) continue;
       const double area = toolpath::area_mm2(d.overhang);
       S.overhang_area[L][i] = static_cast<float>(area);
-      const int k = d.style != schema::Support::None ? contact_layer(S, static_cast<int>(L), d.z_gap) : -1;
-      if (k < 0) {  // not wanted, or no room under it: said when wider than a short ledge
-        c.air[L] += toolpath::area_mm2(toolpath::offset_open(d.overhang, 0, 0.5 * kLedgeMm));
+      const int k = contact_layer(S, static_cast<int>(L), d.z_gap);
+      if (k < 0 || d.style == schema::Support::None) {  // no room under it, or not wanted
+        // Said when wider than a short ledge; support cannot help an overhang too near the bed.
+        (k < 0 ? c.near_bed : c.air)[L] += toolpath::area_mm2(toolpath::offset_open(d.overhang, 0, 0.5 * kLedgeMm));
         continue;
       }
       const int gap = static_cast<int>(L) - 1 - k;
@@ -301,7 +304,15 @@ Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report,
   Contacts c = place_contacts(S, decided);
   S.support.clear();
   if (c.any_normal || c.any_tree) grow_support(S, decided, c, report, o);
-  if (Status s = warn_unsupported(S, c.air, report, o); !s) return s;
+  if (Status s = warn_unsupported(S, c.air, report, o, "unsupported-overhang",
+                                  "set support = normal or tree (--set support=normal) or support it by a rule");
+      !s)
+    return s;
+  if (Status s = warn_unsupported(S, c.near_bed, report, o, "overhang-near-bed",
+                                  "it is less than support_z_gap above the bed, so no support fits under it: "
+                                  "lay the part on another face (--lay-flat, --rotate-x) or lower support_z_gap");
+      !s)
+    return s;
   if (n > 0) plan_brim(S, decided[0]);
   return ok_status();
 }

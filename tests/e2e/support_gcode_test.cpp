@@ -204,3 +204,18 @@ TEST_CASE("support: tree branches hold the cap with far less plastic than column
   CHECK(top == doctest::Approx(9.8));
   CHECK_FALSE(has_warning(tree, "unsupported-overhang"));
 }
+
+TEST_CASE("support: an overhang less than the z gap above the bed is said as such: support cannot fit under it") {
+  test::TempDir dir("support-near-bed");
+  geo::Mesh m = geo::box({4, 4, 0.2}, {8, 8, 0});  // one layer of stem
+  geo::append(m, geo::box({20, 20, 2}, {0, 0, 0.2}));
+  for (const char* style : {"none", "normal"}) {
+    Run r = run(dir, style, m, {{"support", style}});
+    REQUIRE(r.result.ok());
+    CHECK(has_warning(r, "overhang-near-bed"));
+    CHECK_FALSE(has_warning(r, "unsupported-overhang"));  // support would not help: not suggested
+    for (const auto& w : r.warnings)
+      if (w.code == "overhang-near-bed") CHECK(w.message.find("no support fits under it") != std::string::npos);
+    CHECK_FALSE(r.g.contains(";TYPE:Support material"));
+  }
+}
