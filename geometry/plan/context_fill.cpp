@@ -14,6 +14,31 @@ double PathPlan::length_mm() const {
   return len * geo::kMmPerUnit;
 }
 
+LayerPlan layer_shell(const setup::PrintSetup& S, int L) {
+  const geo::Layer& layer = S.layers[static_cast<size_t>(L)];
+  LayerPlan p;
+  p.index = L;
+  p.z_bottom = layer.z_bottom;
+  p.z = layer.z_top;
+  p.height = layer.height();
+  p.area = S.table.get(L, FieldId::LayerArea);
+  if (static_cast<size_t>(L) < S.support.size()) p.support_area = S.support[static_cast<size_t>(L)].area_mm2;
+  return p;
+}
+
+IslandPlan island_shell(const setup::PrintSetup& S, int L, size_t i) {
+  const auto l = static_cast<size_t>(L);
+  const geo::Island& src = S.layers[l].islands[i];
+  IslandPlan ip;
+  ip.index = static_cast<int>(i);
+  ip.object = src.object;
+  const auto k = static_cast<size_t>(src.object);
+  ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
+  ip.shape = geo::to_rings({src.shape});
+  if (l < S.overhang_area.size() && i < S.overhang_area[l].size()) ip.overhang_area = S.overhang_area[l][i];
+  return ip;
+}
+
 void set_layer_fields(ctx::Context& c, const LayerPlan& l, int islands) {
   c.set(FieldId::LayerIndex, l.index);
   c.set(FieldId::LayerZBottom, l.z_bottom);

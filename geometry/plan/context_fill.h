@@ -5,9 +5,15 @@
 #include <vector>
 
 #include "geometry/plan/plan.h"
+#include "geometry/setup/print_setup.h"
 #include "runtime/context/context.h"
 
 namespace tranche::plan {
+
+// Layer L of `setup` as the loop enters it: index, z, height, area, support area (no decisions).
+LayerPlan layer_shell(const setup::PrintSetup& setup, int L);
+// Island i of layer L as the loop enters it: index, object (and its name's text), shape, overhang.
+IslandPlan island_shell(const setup::PrintSetup& setup, int L, size_t i);
 
 void set_layer_fields(ctx::Context& c, const LayerPlan& layer, int islands);
 void set_island_fields(ctx::Context& c, const IslandPlan& island);

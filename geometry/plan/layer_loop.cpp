@@ -72,12 +72,7 @@ class LayerTask final : public IslandHost {
 
 Status LayerTask::layer_level() {
   const geo::Layer& layer = S.layers[static_cast<size_t>(L)];
-  plan_.index = L;
-  plan_.z_bottom = layer.z_bottom;
-  plan_.z = layer.z_top;
-  plan_.height = layer.height();
-  plan_.area = S.table.get(L, FieldId::LayerArea);
-  if (static_cast<size_t>(L) < S.support.size()) plan_.support_area = S.support[static_cast<size_t>(L)].area_mm2;
+  plan_ = layer_shell(S, L);
   nest_.enter_layer(plan_, static_cast<int>(layer.islands.size()));
   plan_.props = S.print_props;
   if (Status s = nest_.decide(Stage::Layer, plan_.props, plan_.trace); !s) return s;
@@ -86,15 +81,7 @@ Status LayerTask::layer_level() {
   regions_.resize(layer.islands.size());
   for (size_t i = 0; i < layer.islands.size(); ++i) {
     IslandPlan& ip = plan_.islands[i];
-    const geo::Island& src = layer.islands[i];
-    ip.index = static_cast<int>(i);
-    ip.object = src.object;
-    const auto k = static_cast<size_t>(src.object);
-    ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
-    ip.shape.push_back(src.shape.outer);
-    for (const auto& h : src.shape.holes) ip.shape.push_back(h);
-    if (static_cast<size_t>(L) < S.overhang_area.size() && i < S.overhang_area[static_cast<size_t>(L)].size())
-      ip.overhang_area = S.overhang_area[static_cast<size_t>(L)][i];
+    ip = island_shell(S, L, i);
     if (Status s = island_level(ip); !s) return s;
   }
   if (Status s = support_level(); !s) return s;

@@ -45,12 +45,6 @@ struct LayerSupport {
   double brim_width = 0;  // mm, the bead of the brim (layer 0, when an island asks for one)
 };
 
-Rings shape_of(const geo::Island& isl) {
-  Rings r{isl.shape.outer};
-  r.insert(r.end(), isl.shape.holes.begin(), isl.shape.holes.end());
-  return r;
-}
-
 // Layer L's islands decided at their island stage, as the layer loop decides them, and their
 // overhangs measured.
 Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, LayerSupport& out) {
@@ -58,12 +52,7 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
   toolpath::Neighbours nb(S.layers, L);
   const IslandNeeds needs = IslandNeeds::of(nest);
   const geo::Layer& layer = S.layers[static_cast<size_t>(L)];
-  LayerPlan lp;
-  lp.index = L;
-  lp.z_bottom = layer.z_bottom;
-  lp.z = layer.z_top;
-  lp.height = layer.height();
-  lp.area = S.table.get(L, FieldId::LayerArea);
+  LayerPlan lp = layer_shell(S, L);
   nest.enter_layer(lp, static_cast<int>(layer.islands.size()));
   lp.props = S.print_props;
   if (Status s = nest.decide(Stage::Layer, lp.props); !s) return s;
@@ -71,12 +60,7 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
   std::map<double, Rings> grown;  // the layer below grown by each reach asked for
   out.islands.resize(layer.islands.size());
   for (size_t i = 0; i < layer.islands.size(); ++i) {
-    IslandPlan ip;
-    ip.index = static_cast<int>(i);
-    ip.object = layer.islands[i].object;
-    ip.shape = shape_of(layer.islands[i]);
-    const auto obj = static_cast<size_t>(ip.object);
-    ip.object_text = obj < S.object_texts.size() ? S.object_texts[obj] : -1;
+    IslandPlan ip = island_shell(S, L, i);
     measure_island(ip, S.shift, nb, needs);
     nest.enter_island(ip);
     ip.props = lp.props;
@@ -189,7 +173,7 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       const int gap = static_cast<int>(L) - 1 - k;
       // Grown by the reach inside the island: the slivers of a slope, a reach apart from layer to
       // layer, then overlap into one band (support/support.h).
-      d.overhang = toolpath::intersection(toolpath::offset(d.overhang, d.reach + 0.05), shape_of(S.layers[L].islands[i]));
+      d.overhang = toolpath::intersection(toolpath::offset(d.overhang, d.reach + 0.05), geo::to_rings({S.layers[L].islands[i].shape}));
       if (d.style == schema::Support::Normal) {
         c.normal.bottom_gap_layers = std::max(c.normal.bottom_gap_layers, gap);
         c.normal.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});
@@ -213,7 +197,7 @@ std::vector<Rings> keep_out(const setup::PrintSetup& S, const std::vector<LayerS
   tbb::parallel_for(size_t{0}, S.layers.size(), [&](size_t L) {
     Rings grown;
     for (size_t i = 0; i < S.layers[L].islands.size(); ++i) {
-      Rings g = toolpath::offset(shape_of(S.layers[L].islands[i]), decided[L].islands[i].xy_gap);
+      Rings g = toolpath::offset(geo::to_rings({S.layers[L].islands[i].shape}), decided[L].islands[i].xy_gap);
       grown.insert(grown.end(), g.begin(), g.end());
     }
     out[L] = toolpath::simplify(toolpath::union_of(grown), 25000);  // 25 µm: support needs no finer

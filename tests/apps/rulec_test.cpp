@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "tests/apps/run_command.h"
 #include "tests/support/fixtures.h"
 
 namespace fs = std::filesystem;
@@ -13,28 +14,13 @@ using namespace tranche::test;
 
 namespace {
 
-struct Run {
-  int status;
-  std::string out;
-};
 
 // Runs `rulec ARGS` through the shell, with `input` on its standard input.
 Run rulec(const std::string& args, const std::string& input = "") {
   TempDir dir("rulec-in");
   fs::path in = dir.path() / "stdin";
   std::ofstream(in, std::ios::binary) << input;
-  std::string cmd = "'";
-  cmd.append((binary_dir() / "apps" / "rulec").string()).append("' ").append(args);
-  cmd.append(" < '").append(in.string()).append("' 2>&1");
-  Run r{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  int raw = pclose(p);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
+  return run_app("rulec", args, "< '" + in.string() + "' 2>&1");
 }
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }

@@ -9,6 +9,7 @@
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/plate/threemf_write.h"
+#include "tests/apps/run_command.h"
 #include "tests/support/fixtures.h"
 
 namespace fs = std::filesystem;
@@ -17,25 +18,9 @@ using namespace tranche::test;
 
 namespace {
 
-struct Run {
-  int status;
-  std::string out;
-};
 
 // Runs `tranche ARGS` through the shell, stderr with stdout.
-Run tranche_cmd(const std::string& args) {
-  std::string cmd = "'";
-  cmd.append((binary_dir() / "apps" / "tranche").string()).append("' ").append(args).append(" 2>&1 < /dev/null");
-  Run r{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  int raw = pclose(p);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+Run tranche_cmd(const std::string& args) { return run_app("tranche", args, "2>&1 < /dev/null"); }
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
