@@ -303,6 +303,7 @@ Status build_support(IslandPlan& ip, Nest& nest, double height_mm, PathKind kind
                      std::vector<FillGrid>& regions) {
   ip.paths.clear();
   ip.cells.clear();
+  ip.fill_region.clear();
   regions.clear();
   const PropertyValues& P = ip.props;
   TraceRef log;
@@ -313,8 +314,10 @@ Status build_support(IslandPlan& ip, Nest& nest, double height_mm, PathKind kind
   const double density = std::min(1.0, P[iface ? PropId::SupportInterfaceDensity : PropId::SupportDensity]);
   if (density <= 0) return ok_status();
   // Bead edges stay on the region's border: the xy gap is air between the part and the beads.
-  geo::Rings inner = toolpath::offset(ip.shape, -0.5 * w);
+  // (This also removes what is narrower than a bead: support::project leaves it in.)
+  geo::Rings inner = toolpath::offset_coarse(ip.shape, -0.5 * w);
   if (inner.empty()) return ok_status();
+  ip.fill_region = inner;  // travels follow it (plan/travel)
   const double s = toolpath::bead_spacing_mm(w, height_mm);
   if (wall) {  // a branch's wall, then its inside
     for (const geo::Ring& r : inner) {
@@ -328,7 +331,7 @@ Status build_support(IslandPlan& ip, Nest& nest, double height_mm, PathKind kind
       p.trace = nest.path_log(log);
       ip.paths.push_back(std::move(p));
     }
-    inner = toolpath::offset(inner, -s);
+    inner = toolpath::offset_coarse(inner, -s);
     if (inner.empty()) return ok_status();
   }
   std::vector<double> angles{iface ? 90.0 : 0.0};

@@ -115,6 +115,7 @@ struct IslandPlan {
   bool convex = false;
   double below_area = 0, below_supported = 0;
   bool support = false;       // an island of support material (island.support)
+  geo::Rings fill_region;     // support islands: the shape less half a bead, which beads fill and travels follow
   double overhang_area = 0;   // mm², island.overhang_area (geometry/plan/support_pass)
   ctx::PropertyValues props;  // as decided at the island stage
   TraceRef trace;             // provenance of the island stage (when recorded)

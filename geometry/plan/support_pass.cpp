@@ -85,7 +85,8 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
     spec.nozzle_mm = nozzle;
     spec.max_bridge_mm = P[PropId::SupportMaxBridge];
     auto it = grown.find(spec.reach_mm);
-    if (it == grown.end()) it = grown.emplace(spec.reach_mm, toolpath::offset(nb.layer(-1), spec.reach_mm)).first;
+    if (it == grown.end())  // overhangs need no finer arcs than support (25 µm)
+      it = grown.emplace(spec.reach_mm, toolpath::offset_coarse(nb.layer(-1), spec.reach_mm)).first;
     d.overhang = support::overhang(ip.shape, it->second, nb.layer(-1), spec);
     d.reach = spec.reach_mm;
   }
@@ -197,7 +198,7 @@ std::vector<Rings> keep_out(const setup::PrintSetup& S, const std::vector<LayerS
   tbb::parallel_for(size_t{0}, S.layers.size(), [&](size_t L) {
     Rings grown;
     for (size_t i = 0; i < S.layers[L].islands.size(); ++i) {
-      Rings g = toolpath::offset(geo::to_rings({S.layers[L].islands[i].shape}), decided[L].islands[i].xy_gap);
+      Rings g = toolpath::offset_coarse(geo::to_rings({S.layers[L].islands[i].shape}), decided[L].islands[i].xy_gap);
       grown.insert(grown.end(), g.begin(), g.end());
     }
     out[L] = toolpath::simplify(toolpath::union_of(grown), 25000);  // 25 µm: support needs no finer

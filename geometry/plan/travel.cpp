@@ -40,9 +40,16 @@ Travel route_travel(const toolpath::Comber* comber, const geo::Point& from, cons
 }
 
 void plan_travels(LayerPlan& plan, const TravelPolicy& policy) {
-  geo::Rings material;
-  for (const auto& ip : plan.islands) material.insert(material.end(), ip.shape.begin(), ip.shape.end());
-  auto comber = std::make_shared<toolpath::Comber>(material);
+  geo::Rings material, ready, ready_inner;  // support islands come with their fill region
+  for (const auto& ip : plan.islands) {
+    if (ip.support) {
+      ready.insert(ready.end(), ip.shape.begin(), ip.shape.end());
+      ready_inner.insert(ready_inner.end(), ip.fill_region.begin(), ip.fill_region.end());
+    } else {
+      material.insert(material.end(), ip.shape.begin(), ip.shape.end());
+    }
+  }
+  auto comber = std::make_shared<toolpath::Comber>(material, ready, ready_inner);
   bool first = true, known = true;
   geo::Point pos;
   auto visit = [&](PathPlan& p, bool comb) {

@@ -56,7 +56,7 @@ double length_inside(const Rings& outline, const Rings& region) {
 
 bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double reach_mm, double hold_mm) {
   if (max_bridge_mm <= 0 || below.empty()) return false;
-  const Rings zone = toolpath::offset(piece, hold_mm);
+  const Rings zone = toolpath::offset_coarse(piece, hold_mm);
   const Rings near_below = toolpath::near(below, toolpath::bbox(zone));
   const Rings holds = toolpath::intersection(zone, near_below);
   if (toolpath::area_mm2(holds) <= 0) return false;
@@ -68,10 +68,10 @@ bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, dou
     double outline = 0;
     for (const geo::Ring& r : piece)
       if (ClipperLib::Orientation(r)) outers.push_back(r), outline += geo::length_mm(r);
-    if (length_inside(outers, toolpath::offset(near_below, reach_mm + 0.01)) < 0.75 * outline) return false;
+    if (length_inside(outers, toolpath::offset_coarse(near_below, reach_mm + 0.01)) < 0.75 * outline) return false;
   }
   // Short enough: every point within half a span of a hold.
-  const Rings far = toolpath::difference(piece, toolpath::offset(holds, 0.5 * max_bridge_mm + hold_mm));
+  const Rings far = toolpath::difference(piece, toolpath::offset_coarse(holds, 0.5 * max_bridge_mm + hold_mm));
   return toolpath::area_mm2(far) < 1e-3;
 }
 
@@ -79,7 +79,10 @@ Rings overhang(const Rings& island, const Rings& below_reach, const Rings& below
   Rings out;
   Rings raw = toolpath::difference(island, toolpath::near(below_reach, toolpath::bbox(island)));
   if (raw.empty()) return out;
-  if (spec.min_width_mm > 0) raw = toolpath::offset_open(raw, 0, 0.5 * spec.min_width_mm);
+  if (spec.min_width_mm > 0) {  // an opening: what is narrower than min_width goes
+    const double r = 0.5 * spec.min_width_mm;
+    raw = toolpath::offset_coarse(toolpath::offset_coarse(raw, -r), r);
+  }
   const double speck = 0.25 * std::numbers::pi * spec.nozzle_mm * spec.nozzle_mm;
   for (Rings& piece : components(raw)) {
     if (toolpath::area_mm2(piece) < speck) continue;

@@ -18,18 +18,18 @@ namespace {
 constexpr geo::coord_t kSimplify = 12500;     // 12.5 µm, the islands' own resolution: the columns
 constexpr geo::coord_t kPrintSimplify = 50000;  // 50 µm: what support prints (a bead is 450 µm)
 
-// Offsets with arcs to 25 µm (the toolpaths' 5 µm would be wasted on support: every vertex of the
-// part's outline, grown by its gap, comes back through here).
-Rings coarse_offset(const Rings& r, double mm) {
-  Rings out;
-  if (r.empty()) return out;
-  ClipperLib::ClipperOffset co(2.0, 25000);
-  co.AddPaths(r, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
-  co.Execute(out, mm * geo::kUnitsPerMm);
-  return out;
+Rings closing(const Rings& r, double mm) {
+  return mm > 0 ? toolpath::offset_coarse(toolpath::offset_coarse(r, mm), -mm) : r;
 }
-Rings closing(const Rings& r, double mm) { return mm > 0 ? coarse_offset(coarse_offset(r, mm), -mm) : r; }
-Rings opening(const Rings& r, double mm) { return mm > 0 ? coarse_offset(coarse_offset(r, -mm), mm) : r; }
+
+// `r` without its rings of less than a bead's square: outlines no bead fits in, and holes too small
+// to matter (the part's own holes in support are at least its xy gap across, twice; a hole in a
+// dropped outline is smaller still, and must go with it).
+Rings drop_specks(Rings r, double bead_mm) {
+  const double min_area = bead_mm * bead_mm * geo::kUnitsPerMm * geo::kUnitsPerMm;
+  std::erase_if(r, [&](const geo::Ring& ring) { return std::abs(ClipperLib::Area(ring)) < min_area; });
+  return r;
+}
 
 // Union of the part below each layer (0..k), for bed-only contacts: computed only when one asks.
 std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
@@ -62,8 +62,15 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
   // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
   Rings iface = iface_src.empty() ? Rings{}
                                   : toolpath::intersection(printed, closing(toolpath::union_of(iface_src), 0.5 * in.merge_mm));
-  out.interface = opening(iface, 0.5 * in.min_width_mm);
-  out.base = opening(toolpath::difference(printed, out.interface), 0.5 * in.min_width_mm);
+  // No opening here (it was two thirds of this function's time): the toolpaths erode each support
+  // island by half a bead before filling it (plan::build_support), which removes every sliver
+  // narrower than a bead just as an opening would; only specks are dropped now, so that they do
+  // not become islands of their own.
+  out.interface = drop_specks(std::move(iface), in.min_width_mm);
+  // The interface is cut from a column simplified for printing, its sources are not: grown by a
+  // little more than that simplification, it leaves no base sliver along its edge.
+  const Rings iface_cut = toolpath::offset_coarse(out.interface, 1.2 * geo::to_mm(kPrintSimplify));
+  out.base = drop_specks(toolpath::difference(printed, iface_cut), in.min_width_mm);
   out.area_mm2 = toolpath::area_mm2(out.base) + toolpath::area_mm2(out.interface);
   return out;
 }
@@ -101,8 +108,10 @@ ProjectResult project(const ProjectInput& in) {
     if (!in.columns) column = iface_src[k], added = true;  // the interface alone, layer by layer
     if (column.empty()) continue;
     if (added) column = toolpath::union_of(column);
-    column = toolpath::difference(column, toolpath::near(material[k], toolpath::bbox(column)));
-    if (!in.bed.empty()) {
+    if (Rings part = toolpath::near(material[k], toolpath::bbox(column)); !part.empty())
+      column = toolpath::difference(column, part);
+    // Only new contacts can reach past the bed: below them the column only shrinks.
+    if (added && !in.bed.empty()) {
       Rings on = toolpath::intersection(column, in.bed);
       res.off_bed_mm2 += std::max(0.0, toolpath::area_mm2(column) - toolpath::area_mm2(on));
       column = std::move(on);

@@ -22,16 +22,19 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
   c.Execute(op, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   return out;
 }
-}  // namespace
 
-Rings offset(const Rings& region, double mm) {
+Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
   Rings out;
   if (region.empty()) return out;
-  ClipperOffset co(2.0, kArcTolerance);
+  ClipperOffset co(2.0, arc_tolerance);
   co.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
   co.Execute(out, mm * geo::kUnitsPerMm);
   return out;
 }
+}  // namespace
+
+Rings offset(const Rings& region, double mm) { return offset_with(region, mm, kArcTolerance); }
+Rings offset_coarse(const Rings& region, double mm) { return offset_with(region, mm, 25000); }
 
 Rings offset_open(const Rings& region, double mm, double open_mm) {
   return offset(offset(region, mm - open_mm), open_mm);

@@ -9,6 +9,9 @@ namespace tranche::toolpath {
 // Grows (mm > 0) or shrinks (mm < 0) closed regions with round joins: the exact Minkowski
 // sum/difference with a disc, up to the arc tolerance (5 µm).
 geo::Rings offset(const geo::Rings& region, double mm);
+// The same with arcs to 25 µm: for support, whose beads need no finer (and whose outlines carry
+// every vertex of the part's, grown by a gap).
+geo::Rings offset_coarse(const geo::Rings& region, double mm);
 // Shrinks by `mm`, then grows back by `open_mm`: removes parts narrower than 2·open_mm.
 geo::Rings offset_open(const geo::Rings& region, double mm, double open_mm);
 // The area within `mm` of closed lines (each ring taken as a loop of centreline).

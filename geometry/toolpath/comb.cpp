@@ -9,7 +9,13 @@ namespace tranche::toolpath {
 
 using geo::Point;
 
-Comber::Comber(const geo::Rings& material, double margin_mm) : material_(material), margin_mm_(margin_mm) {}
+Comber::Comber(const geo::Rings& material, double margin_mm)
+    : material_(material), shrink_count_(material.size()), margin_mm_(margin_mm) {}
+
+Comber::Comber(const geo::Rings& material, const geo::Rings& ready, const geo::Rings& ready_inner, double margin_mm)
+    : material_(material), shrink_count_(material.size()), ready_inner_(ready_inner), margin_mm_(margin_mm) {
+  material_.insert(material_.end(), ready.begin(), ready.end());
+}
 
 const EdgeGrid& Comber::border() const {
   std::call_once(border_once_, [&] { border_ = EdgeGrid(material_); });
@@ -18,7 +24,9 @@ const EdgeGrid& Comber::border() const {
 
 void Comber::build_comb() const {
   std::call_once(comb_once_, [&] {
-    comb_ = offset(material_, -margin_mm_);
+    const geo::Rings shrink(material_.begin(), material_.begin() + static_cast<std::ptrdiff_t>(shrink_count_));
+    comb_ = offset_coarse(shrink, -margin_mm_);  // travels need no finer than 25 µm
+    comb_.insert(comb_.end(), ready_inner_.begin(), ready_inner_.end());
     comb_grid_ = EdgeGrid(comb_);
   });
 }

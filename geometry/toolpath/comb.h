@@ -18,6 +18,9 @@ class Comber {
   Comber() = default;
   // `material`: the layer's islands (outer CCW, holes CW). Routes stay `margin_mm` inside them.
   explicit Comber(const geo::Rings& material, double margin_mm = 0.1);
+  // The same with more islands, `ready`, whose shrunk regions are known (`ready_inner`, at least
+  // the margin inside them: a support island's fill region), so they are not shrunk again.
+  Comber(const geo::Rings& material, const geo::Rings& ready, const geo::Rings& ready_inner, double margin_mm = 0.1);
 
   // Whether the straight move ab stays inside the material (crosses no border).
   bool direct(const geo::Point& a, const geo::Point& b) const { return !border().crosses(a, b); }
@@ -40,7 +43,9 @@ class Comber {
   const EdgeGrid& border() const;
   void build_comb() const;
 
-  geo::Rings material_;
+  geo::Rings material_;  // to shrink, then the ready islands
+  size_t shrink_count_ = 0;  // how many of material_'s rings are shrunk
+  geo::Rings ready_inner_;
   double margin_mm_ = 0.1;
   mutable std::once_flag border_once_, comb_once_;
   mutable EdgeGrid border_;     // edges of the material itself

@@ -58,6 +58,28 @@ TEST_CASE("comb: a travel across a hole goes around it, inside the part, in few 
   CHECK(length_mm(a, *via, b) == doctest::Approx(2 * std::hypot(4.9, 5.1) + 10.2).epsilon(0.01));
 }
 
+TEST_CASE("comb: an island given with its shrunk region (support) is routed along that region, not shrunk again") {
+  // The plate with its hole as a ready island, its region 0.5 mm in; a separate square to shrink.
+  geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
+  geo::Rings inner{test::rect(0.5, 0.5, 29.5, 19.5), test::rect(9.5, 4.5, 20.5, 15.5, false)};
+  geo::Rings square{test::rect(40, 0, 50, 10)};
+  Comber c(square, plate, inner);
+  auto a = to_point(5, 10), b = to_point(25, 10);
+  CHECK(c.inside(a));
+  CHECK_FALSE(c.direct(a, b));
+  auto via = c.route(a, b);
+  REQUIRE(via);
+  check_inside(plate, a, *via, b);
+  // Round the ready region's corners, 0.5 mm off the hole (not the 0.1 mm margin).
+  CHECK(length_mm(a, *via, b) == doctest::Approx(2 * std::hypot(4.5, 5.5) + 11).epsilon(0.01));
+  // The other island is shrunk by the margin as before: a travel inside it is routed (straight)...
+  auto inside = c.route(to_point(41, 1), to_point(49, 9));
+  REQUIRE(inside);
+  CHECK(inside->empty());  // no detour
+  CHECK_FALSE(c.route(to_point(40.05, 5), to_point(49, 9)));  // ...from within its margin, not
+  CHECK_FALSE(c.route(a, to_point(45, 5)));  // and none between islands
+}
+
 TEST_CASE("comb: a straight travel inside the part needs no route") {
   geo::Rings plate{test::rect(0, 0, 30, 20), test::rect(10, 5, 20, 15, false)};
   Comber c(plate);
