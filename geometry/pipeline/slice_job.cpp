@@ -28,6 +28,7 @@
 #include "geometry/slice/layer_heights.h"
 #include "geometry/slice/slicer.h"
 #include "geometry/slice/topology.h"
+#include "geometry/support/raft.h"
 #include "runtime/context/cascade.h"
 #include "runtime/context/overrides.h"
 
@@ -285,8 +286,24 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
                  "nothing to print: no layer has any material (a surface without volume?); check that the "
                  "model is a closed solid"};
 
+  const int raft = static_cast<int>(in.print.props[schema::PropId::RaftLayers]);
+  if (raft > 0) {
+    support::RaftSpec rs;
+    rs.layers = raft;
+    rs.first_height = layers.front().height();
+    rs.height = layers.size() > 1 ? layers[1].height() : layers.front().height();
+    rs.gap = in.print.props[schema::PropId::RaftZGap];
+    support::lift_onto_raft(layers, rs);
+  }
   auto setup = setup::make_setup(layers, in.facts, in.print.ctx, in.print.props, cascade, options.model, report);
   if (!setup) return setup.error();
+  const bool sequential =
+      in.print.props[schema::PropId::PrintOrder] == static_cast<double>(schema::PrintOrder::Sequential) &&
+      (*setup)->objects.size() > 1;
+  if (sequential && raft > 0)
+    return Error{options.model,
+                 "raft_layers and print_order = sequential: a raft lies under every object at once, so the objects "
+                 "cannot be printed one after the other on it; set raft_layers = 0 or print_order = layers"};
   (*setup)->allow_off_bed = options.allow_off_bed;
   name_objects(**setup, in.facts, rules, report);
   std::unique_ptr<geo::ScriptAngles> angles;
@@ -315,9 +332,6 @@ Result<SliceSummary> finish(SlicedPlate& in, SliceSummary summary, geo::FillAngl
   lo.exact_cells = options.exact_cells;
   lo.preview = outputs->preview.get();
   lo.rules = rules;
-  const bool sequential =
-      in.print.props[schema::PropId::PrintOrder] == static_cast<double>(schema::PrintOrder::Sequential) &&
-      (*setup)->objects.size() > 1;
   progress.start("toolpaths", layers.size());
   if (!sequential) {
     if (Status s = run_layers(**setup, cascade, lo, report, tick); !s) return s.error();

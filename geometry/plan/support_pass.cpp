@@ -12,6 +12,7 @@
 #include "geometry/plan/island_content.h"
 #include "geometry/plan/nest.h"
 #include "geometry/support/overhang.h"
+#include "geometry/support/raft.h"
 #include "geometry/support/tree.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/flow.h"
@@ -79,7 +80,8 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
       out.brim_width = (*w)[PropId::Width];
     }
     const double angle = P[PropId::SupportAngle];
-    if (L == 0 || angle >= 90) continue;
+    // The first layer stands on the bed or on the raft (layers 0 .. raft_layers - 1).
+    if (L <= static_cast<int>(S.print_props[PropId::RaftLayers]) || angle >= 90) continue;
     support::OverhangSpec spec;
     spec.reach_mm = lp.height * std::tan(angle * std::numbers::pi / 180);
     spec.nozzle_mm = nozzle;
@@ -245,6 +247,30 @@ void grow_support(setup::PrintSetup& S, const std::vector<LayerSupport>& decided
                             blocked));
 }
 
+// The raft (raft_layers > 0): its layers, empty of the part (pipeline lifted the part onto them),
+// print the part's first layer and every support that reaches down to them, grown by
+// raft_expansion; the skirt goes round it.
+void plan_raft(setup::PrintSetup& S, int raft) {
+  const size_t n = S.layers.size(), r = static_cast<size_t>(raft);
+  if (raft <= 0 || n <= r) return;
+  if (S.support.size() < n) S.support.resize(n);
+  Rings foot = toolpath::material(S.layers[r]);
+  for (size_t k = 0; k <= r; ++k)
+    for (const Rings* rs : {&S.support[k].base, &S.support[k].interface, &S.support[k].tree})
+      foot.insert(foot.end(), rs->begin(), rs->end());
+  const Rings bed = support::bed_region(S.bed.circular, S.bed.min_x, S.bed.min_y, S.bed.max_x, S.bed.max_y, S.shift);
+  const Rings sheet = support::raft_region(foot, S.print_props[PropId::RaftExpansion], bed);
+  for (size_t k = 0; k < r; ++k) {
+    support::SupportLayer& sl = S.support[k];
+    sl = {};
+    (support::raft_layer_dense(static_cast<int>(k), raft) ? sl.interface : sl.base) = sheet;
+    sl.area_mm2 = toolpath::area_mm2(sheet);
+  }
+  geo::Ring pts;
+  for (const geo::Ring& ring : sheet) pts.insert(pts.end(), ring.begin(), ring.end());
+  S.skirt_around = toolpath::convex_hull(std::move(pts));
+}
+
 // Layer 0's islands that ask for a brim, and the skirt round the brim and the first layer's support.
 void plan_brim(setup::PrintSetup& S, const LayerSupport& first) {
   S.brim.clear();
@@ -298,6 +324,7 @@ Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report,
                                   "lay the part on another face (--lay-flat, --rotate-x) or lower support_z_gap");
       !s)
     return s;
+  plan_raft(S, static_cast<int>(S.print_props[PropId::RaftLayers]));
   if (n > 0) plan_brim(S, decided[0]);
   return ok_status();
 }

@@ -340,3 +340,21 @@ TEST_CASE("command line: usage errors say what an option needs") {
   CHECK(has(error("m.stl --spacing -1"), "--spacing needs a distance in mm"));
   CHECK(error("m.stl --arrange --no-arrange") == "--arrange and --no-arrange contradict each other");
 }
+
+TEST_CASE("plate e2e: a raft under a sequential plate is refused before any file is written") {
+  test::TempDir dir("plate-sequential-raft");
+  plate::PlateOptions p;
+  p.files = {(dir / "a.stl").string(), (dir / "b.stl").string()};
+  REQUIRE(geo::write_stl_binary(p.files[0], geo::box({15, 15, 6})).ok());
+  REQUIRE(geo::write_stl_binary(p.files[1], geo::box({15, 15, 4})).ok());
+  p.arrange = plate::ArrangeMode::Always;
+  p.spacing_mm = 50;
+  pipeline::SliceOptions o = options(dir);
+  o.model = p.files[0];
+  o.sets = {{"print_order", "sequential"}, {"raft_layers", "2"}};
+  Report report;
+  auto r = app::slice(o, p, report);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().message.find("raft_layers and print_order = sequential") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(o.output_gcode));
+}

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
 
 #include "apps/slice_command.h"
 #include "gcode_reader.h"
@@ -218,4 +219,60 @@ TEST_CASE("support: an overhang less than the z gap above the bed is said as suc
       if (w.code == "overhang-near-bed") CHECK(w.message.find("no support fits under it") != std::string::npos);
     CHECK_FALSE(r.g.contains(";TYPE:Support material"));
   }
+}
+
+TEST_CASE("raft: layers of support under the whole first layer, the part a gap above them, the skirt round it") {
+  test::TempDir dir("raft");
+  // A 10 mm cube (x, y in [95, 105] on the bed): three raft layers of 0.2 mm, 0.1 mm of air.
+  Run r = run(dir, "c", geo::box({10, 10, 10}, {0, 0, 0}), {{"raft_layers", "3"}, {"skirt_loops", "1"}});
+  REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
+  int first_part_layer = -1;
+  double reach = 0;  // how far the raft's beads go past the cube
+  for (const auto& m : r.g.moves) {
+    if (!extrudes(m)) continue;
+    if (is_support(m)) {
+      CHECK(m.layer < 3);  // nothing holds the cube but the raft
+      reach = std::max(reach, to_rect(m.x, m.y, 95, 95, 105, 105));
+      CHECK(to_rect(m.x, m.y, 95, 95, 105, 105) <= 1.5 + 1e-3);  // raft_expansion
+    } else if (m.type != "Skirt/Brim" && first_part_layer < 0) {
+      first_part_layer = m.layer;
+    }
+  }
+  CHECK(reach > 1.0);
+  REQUIRE(first_part_layer == 3);
+  CHECK(r.g.layer_z.at(0) == doctest::Approx(0.2));
+  CHECK(r.g.layer_z.at(2) == doctest::Approx(0.6));
+  CHECK(r.g.layer_z.at(3) == doctest::Approx(0.9));  // 0.6 + raft_z_gap 0.1 + the cube's first 0.2
+  // The first and top raft layers dense (interface), the one between sparse.
+  auto kinds_on = [&](int layer) {
+    std::set<std::string> kinds;
+    for (const auto& m : r.g.moves)
+      if (extrudes(m) && m.layer == layer && is_support(m)) kinds.insert(m.type);
+    return kinds;
+  };
+  CHECK(kinds_on(0) == std::set<std::string>{"Support material interface"});
+  CHECK(kinds_on(1) == std::set<std::string>{"Support material"});
+  CHECK(kinds_on(2) == std::set<std::string>{"Support material interface"});
+  // The skirt goes round the raft, not through it.
+  for (const auto& m : r.g.moves)
+    if (extrudes(m) && m.type == "Skirt/Brim") CHECK(to_rect(m.x, m.y, 95, 95, 105, 105) > 1.5);
+  // The part's overhang test skips its first layer: it lies on the raft, not in the air.
+  CHECK_FALSE(has_warning(r, "unsupported-overhang"));
+}
+
+TEST_CASE("raft: support columns stand on it, and it reaches past them") {
+  test::TempDir dir("raft-support");
+  Run r = run(dir, "m", mushroom(), {{"raft_layers", "2"}, {"support", "normal"}});
+  REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
+  double raft_top = r.g.layer_z.at(1), column_bottom = 1e9;
+  for (const auto& m : r.g.moves)
+    if (extrudes(m) && is_support(m) && m.layer >= 2) column_bottom = std::min(column_bottom, r.g.layer_z.at(m.layer));
+  CHECK(raft_top == doctest::Approx(0.4));
+  CHECK(column_bottom == doctest::Approx(0.4 + 0.1 + 0.2));  // the columns start on the raft's next layer
+  // The raft covers the cap's footprint: the columns' (x, y in [90, 110]) and more.
+  double x_min = 1e9, x_max = -1e9;
+  for (const auto& m : r.g.moves)
+    if (extrudes(m) && m.layer == 0) x_min = std::min(x_min, m.x), x_max = std::max(x_max, m.x);
+  CHECK(x_min < 90);
+  CHECK(x_max > 110);
 }
