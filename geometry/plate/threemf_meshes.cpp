@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -25,7 +26,38 @@ bool digit(char c) { return static_cast<unsigned char>(c - '0') < 10; }
 // The number std::from_chars reads from [p, end) into `out`, and the end of what it read (nullptr:
 // nothing). The forms nearly every writer uses are read here, giving the same value from_chars
 // would; every other form goes to from_chars.
+// How many of the 8 bytes of `chunk` (in memory order) are decimal digits before the first that is not.
+int leading_digits(uint64_t chunk) {
+  // A byte is a digit when its high nibble is 3 and its low nibble plus 6 stays below 16; the
+  // bytes that are not get a nonzero value, and the first of those is found by its lowest bit.
+  const uint64_t not_digit =
+      ((chunk & 0xF0F0F0F0F0F0F0F0ull) ^ 0x3030303030303030ull) | (((chunk & 0x0F0F0F0F0F0F0F0Full) + 0x0606060606060606ull) & 0x1010101010101010ull);
+  return not_digit ? std::countr_zero(not_digit) / 8 : 8;
+}
+
+// The value of the n (1 to 8) digits at the start of `chunk` (eight digits at once: the bytes
+// are paired, then the pairs, then the fours).
+uint32_t digits_value(uint64_t chunk, int n) {
+  uint64_t v = (chunk - 0x3030303030303030ull) << (8 * (8 - n));  // leading zeros in front
+  v = (v * 10) + (v >> 8);
+  v = (((v & 0x000000FF000000FFull) * (100 + (1000000ull << 32))) +
+       (((v >> 16) & 0x000000FF000000FFull) * (1 + (10000ull << 32)))) >>
+      32;
+  return static_cast<uint32_t>(v);
+}
+
 const char* number(const char* p, const char* end, uint32_t& out) {
+  if (end - p >= 8) {  // up to 7 digits at once (and what follows them is no digit)
+    uint64_t chunk;
+    std::memcpy(&chunk, p, 8);
+    if constexpr (std::endian::native == std::endian::little) {
+      const int n = leading_digits(chunk);
+      if (n > 0 && n < 8) {
+        out = digits_value(chunk, n);
+        return p + n;
+      }
+    }
+  }
   const char* q = p;
   uint64_t v = 0;
   while (q < end && digit(*q) && v <= UINT32_MAX) v = v * 10 + static_cast<unsigned>(*q++ - '0');
@@ -33,6 +65,27 @@ const char* number(const char* p, const char* end, uint32_t& out) {
   if (q == p || v > UINT32_MAX) return nullptr;
   out = static_cast<uint32_t>(v);
   return q;
+}
+
+// The digits at q appended to m (m * 10^n + their value), q moved past them; their count n. Past
+// 19 digits m wraps: the caller looks at the count.
+int append_digits(const char*& q, const char* end, uint64_t& m) {
+  static constexpr uint64_t kPow10[8] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
+  if constexpr (std::endian::native == std::endian::little) {
+    if (end - q >= 8) {
+      uint64_t chunk;
+      std::memcpy(&chunk, q, 8);
+      const int n = leading_digits(chunk);
+      if (n < 8) {
+        if (n > 0) m = m * kPow10[n] + digits_value(chunk, n);
+        q += n;
+        return n;
+      }
+    }
+  }
+  int n = 0;
+  for (; q < end && digit(*q); ++q, ++n) m = m * 10 + static_cast<unsigned>(*q - '0');
+  return n;
 }
 
 const char* number(const char* p, const char* end, float& out) {
@@ -44,9 +97,12 @@ const char* number(const char* p, const char* end, float& out) {
   q += minus;
   uint64_t m = 0;
   int digits = 0, k = 0;
-  for (; q < end && digit(*q); ++q, ++digits) m = m * 10 + static_cast<unsigned>(*q - '0');
-  if (digits > 0 && q < end && *q == '.') {
-    for (++q; q < end && digit(*q); ++q, ++digits, ++k) m = m * 10 + static_cast<unsigned>(*q - '0');
+  const int whole = append_digits(q, end, m);
+  digits += whole;
+  if (whole > 0 && q < end && *q == '.') {
+    ++q;
+    k = append_digits(q, end, m);
+    digits += k;
   }
   static constexpr double kTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
