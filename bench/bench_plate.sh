@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The plate: load time of a 3MF of 10 objects and 2 000 000 triangles against the same meshes as
-# 10 STL files (goal: within 1.5×), and the arrangement of 50 objects on a 250 × 210 mm bed
+# 10 STL files (goal: within 1.5×; the 3MF is inflated by libdeflate, its objects read and welded
+# in parallel: the CPU-time column, all threads, is the cost on a machine others share, where the
+# wall time waits for cores), and the arrangement of 50 objects on a 250 × 210 mm bed
 # (limit: 1 s) with its packing density against PrusaSlicer's --arrange on the same objects
 # (goal: within 10%; skipped without prusa-slicer, scripts/install-deps.sh --with-peers).
 #   bench/bench_plate.sh [BUILD_DIR]        BENCH_RUNS=N: best of N loads (default 3)

@@ -346,6 +346,13 @@ class Build {
   Status finish(Status stop, Report& report) {
     tbb::parallel_for(size_t{0}, welds_.size(), [&](size_t i) {
       Weld& w = welds_[i];
+      // One mesh taken whole, in mm, unturned: welded as it was read (the identity would give the
+      // same floats, but for -0, which the welding makes +0 either way).
+      if (w.pieces.size() == 1 && w.pieces[0].keep.empty() && w.pieces[0].t.matrix() == Eigen::Matrix4d::Identity()) {
+        w.mesh = geo::weld_indexed(w.pieces[0].data->vertices, w.pieces[0].data->triangles, w.where, log_[w.item]);
+        w.pieces.clear();
+        return;
+      }
       std::vector<float> vertices;
       std::vector<uint32_t> triangles;
       Collector::gather(w.pieces, vertices, triangles);
