@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <new>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -209,6 +210,30 @@ Result<ZipBytes> ZipArchive::read_bytes(const ZipEntry& e, uint64_t limit) const
   auto in = data_of(e, limit);
   if (!in) return in.error();
   ZipBytes out(e.size);
+  // Fresh memory is zeroed by the kernel when first written: for a large entry, a second thread
+  // has the pages made ready from the end while the inflating (one thread) fills them from the
+  // start, so that the zeroing is not on its way.
+  struct Joined {  // joined however unpack() returns, a throw included
+    std::thread t;
+    ~Joined() {
+      if (t.joinable()) t.join();
+    }
+  } ready;
+#ifdef MADV_POPULATE_WRITE
+  if (e.size >= kPrepared) {
+    char* base = out.data();
+    const size_t size = e.size;
+    ready.t = std::thread([base, size] {
+      constexpr size_t kStep = size_t{8} << 20, kHuge = size_t{2} << 20;
+      for (size_t hi = size; hi > size / 4;) {
+        const size_t lo = (hi > kStep ? hi - kStep : 0) & ~(kHuge - 1);  // huge-page aligned
+        // Only page tables and zeroed pages: the contents the inflating writes are never touched.
+        if (madvise(base + lo, hi - lo, MADV_POPULATE_WRITE) != 0) break;  // older kernels: a hint lost
+        hi = lo;
+      }
+    });
+  }
+#endif
   if (Status s = unpack(e, *in, out.data()); !s) return s.error();
   return out;
 }

@@ -75,6 +75,8 @@ class ZipArchive {
   Status unpack(const ZipEntry& entry, std::string_view in, char* out) const;
   Error damaged(const ZipEntry& entry, const std::string& what) const;
 
+  static constexpr uint64_t kPrepared = uint64_t{32} << 20;  // read_bytes: from this size on, pages made ready ahead
+
   std::string_view bytes_;
   std::string file_;
   std::vector<ZipEntry> entries_;
