@@ -6,6 +6,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <limits>
 #include <new>
@@ -213,19 +214,21 @@ Result<ZipBytes> ZipArchive::read_bytes(const ZipEntry& e, uint64_t limit) const
   // Fresh memory is zeroed by the kernel when first written: for a large entry, a second thread
   // has the pages made ready from the end while the inflating (one thread) fills them from the
   // start, so that the zeroing is not on its way.
-  struct Joined {  // joined however unpack() returns, a throw included
+  struct Helper {  // stopped and joined however unpack() returns, a throw included
     std::thread t;
-    ~Joined() {
+    std::atomic<bool> stop{false};
+    ~Helper() {
+      stop = true;
       if (t.joinable()) t.join();
     }
   } ready;
 #ifdef MADV_POPULATE_WRITE
   if (e.size >= kPrepared) {
-    char* base = out.data();
-    const size_t size = e.size;
-    ready.t = std::thread([base, size] {
+    ready.t = std::thread([base = out.data(), size = e.size, &stop = ready.stop] {
       constexpr size_t kStep = size_t{8} << 20, kHuge = size_t{2} << 20;
-      for (size_t hi = size; hi > size / 4;) {
+      // Down to a quarter of the entry: below, the inflating is there first. A damaged entry
+      // stops it early (a size claimed for data that is not there is not made ready).
+      for (size_t hi = size; hi > size / 4 && !stop;) {
         const size_t lo = (hi > kStep ? hi - kStep : 0) & ~(kHuge - 1);  // huge-page aligned
         // Only page tables and zeroed pages: the contents the inflating writes are never touched.
         if (madvise(base + lo, hi - lo, MADV_POPULATE_WRITE) != 0) break;  // older kernels: a hint lost
