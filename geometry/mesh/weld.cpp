@@ -24,6 +24,21 @@ uint64_t hash_of(const std::array<uint32_t, 3>& k) {
   return h ^ (h >> 29);
 }
 
+std::string too_many(size_t n) { return fmt::format("{} triangles are more than Tranche can load", n); }
+
+// All of `n` triangles degenerate: an error; some: a warning.
+Status check_degenerate(size_t degenerate, size_t n, const std::string& where, Report& report) {
+  if (degenerate == n)
+    return Error{where, fmt::format("all {} triangles are degenerate (two or three corners at the same point): the "
+                                    "model has no surface",
+                                    n)};
+  if (degenerate)
+    report.warn("mesh-degenerate", where,
+                fmt::format("dropped {} degenerate triangle{} of {} (two corners at the same point)", degenerate,
+                            degenerate == 1 ? "" : "s", n));
+  return ok_status();
+}
+
 }  // namespace
 
 Welder::Welder(size_t triangles) {
@@ -114,7 +129,7 @@ Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& 
       return Error{where, fmt::format("triangle {} has a coordinate that is not a finite number ({}); repair the "
                                       "model, or check the scale it was given",
                                       i / 9 + 1, corners[i])};
-  if (n > Welder::kMaxTriangles) return Error{where, fmt::format("{} triangles are more than Tranche can load", n)};
+  if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
   Welder welder(n);
   std::vector<uint8_t> dropped(n);
   // Batches of a few thousand triangles, as the welder prefers.
@@ -122,16 +137,97 @@ Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& 
     welder.add(corners.data() + 9 * base, std::min<size_t>(4096, n - base), dropped.data() + base);
   size_t degenerate = 0;
   for (uint8_t d : dropped) degenerate += d;
-  if (degenerate == n)
-    return Error{where, fmt::format("all {} triangles are degenerate (two or three corners at the same point): the "
-                                    "model has no surface",
-                                    n)};
-  if (degenerate)
-    report.warn("mesh-degenerate", where,
-                fmt::format("dropped {} degenerate triangle{} of {} (two corners at the same point)", degenerate,
-                            degenerate == 1 ? "" : "s", n));
+  if (Status st = check_degenerate(degenerate, n, where, report); !st) return st.error();
   Mesh mesh;
   welder.finish(mesh);
+  return mesh;
+}
+
+Result<Mesh> weld_indexed(const std::vector<float>& vertices, const std::vector<uint32_t>& triangles,
+                          const std::string& where, Report& report) {
+  const size_t nv = vertices.size() / 3, n = triangles.size() / 3;
+  bool finite = true;
+  for (float f : vertices) finite = finite && std::isfinite(f);
+  if (!finite) {  // weld_corners says which triangle, if a triangle uses the vertex
+    std::vector<float> corners;
+    corners.reserve(9 * n);
+    for (uint32_t v : triangles) corners.insert(corners.end(), &vertices[3 * v], &vertices[3 * v] + 3);
+    return weld_corners(corners, where, report);
+  }
+  if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
+  // canon[v]: the first vertex with v's bits (-0 folded into +0), by a table of vertex ids.
+  std::vector<uint32_t> canon(nv);
+  {
+    const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
+    std::vector<uint32_t> slots(capacity, kEmpty);
+    const uint64_t mask = capacity - 1;
+    auto key = [&](size_t v) {
+      return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
+                                     bits_of(vertices[3 * v + 2])};
+    };
+    for (size_t v = 0; v < nv; ++v) {
+      const auto k = key(v);
+      for (uint64_t i = hash_of(k) & mask;; i = (i + 1) & mask) {
+        if (slots[i] == kEmpty) {
+          slots[i] = canon[v] = static_cast<uint32_t>(v);
+          break;
+        }
+        if (key(slots[i]) == k) {
+          canon[v] = slots[i];
+          break;
+        }
+      }
+    }
+  }
+  // Ids in the order corners first use them, as the Welder numbers corners; degenerate triangles
+  // dropped; then, as Welder::finish does, vertices only dropped triangles use are left out.
+  std::vector<uint32_t> id(nv, kEmpty), first;  // first[i]: the vertex of id i
+  first.reserve(nv);
+  std::vector<std::array<uint32_t, 3>> kept;
+  kept.reserve(n);
+  size_t degenerate = 0;
+  for (size_t t = 0; t < n; ++t) {
+    uint32_t c[3];
+    for (int k = 0; k < 3; ++k) {
+      uint32_t& slot = id[canon[triangles[3 * t + k]]];
+      if (slot == kEmpty) {
+        slot = static_cast<uint32_t>(first.size());
+        first.push_back(canon[triangles[3 * t + k]]);
+      }
+      c[k] = slot;
+    }
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
+      ++degenerate;
+    } else {
+      kept.push_back({c[0], c[1], c[2]});
+    }
+  }
+  if (Status st = check_degenerate(degenerate, n, where, report); !st) return st.error();
+  std::vector<uint32_t> new_id;
+  if (degenerate > 0) {
+    new_id.assign(first.size(), kEmpty);
+    for (const auto& t : kept)
+      for (uint32_t i : t) new_id[i] = 0;
+    uint32_t next = 0;
+    for (auto& i : new_id)
+      if (i != kEmpty) i = next++;
+    for (auto& t : kept)
+      for (auto& i : t) i = new_id[i];
+  }
+  Mesh mesh;
+  mesh.vertices.reserve(first.size());
+  for (size_t i = 0; i < first.size(); ++i) {
+    if (!new_id.empty() && new_id[i] == kEmpty) continue;
+    const float* p = &vertices[3 * first[i]];
+    // Through the bits, as the Welder keeps them: -0 is +0.
+    float f[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t b = bits_of(p[k]);
+      std::memcpy(&f[k], &b, sizeof b);
+    }
+    mesh.vertices.push_back(Vec3{f[0], f[1], f[2]});
+  }
+  mesh.triangles = std::move(kept);
   return mesh;
 }
 

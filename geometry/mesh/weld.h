@@ -48,4 +48,11 @@ class Welder {
 // degenerate ones dropped are a warning (code "mesh-degenerate") at `where`.
 Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& where, Report& report);
 
+// The same welding for loaders that gather indexed triangles (3MF): `vertices` holds x, y, z of
+// each vertex (mm), `triangles` three vertex indices each (all below vertices.size() / 3, the
+// caller's check). The result, warnings and errors are those of weld_corners on the triangles'
+// corners, vertex ids included, but only the vertices are hashed, not every corner.
+Result<Mesh> weld_indexed(const std::vector<float>& vertices, const std::vector<uint32_t>& triangles,
+                          const std::string& where, Report& report);
+
 }  // namespace tranche::geo

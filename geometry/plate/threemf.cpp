@@ -4,9 +4,15 @@
 #include <Model/COM/NMR_DLLInterfaces.h>
 #include <fmt/format.h>
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <optional>
 
 #include "geometry/mesh/weld.h"
 #include "geometry/plate/threemf_meshes.h"
@@ -132,7 +138,47 @@ class Collector {
     return ok_status();
   }
 
-  std::vector<float>& corners() { return corners_; }
+  // The triangles the object will have.
+  size_t triangle_count() const { return triangle_count_; }
+
+  // The meshes collected, for one object.
+  struct Piece {
+    const threemf::MeshData* data;           // the scanner's mesh, or `own`
+    std::unique_ptr<threemf::MeshData> own;  // a mesh lib3mf read
+    std::vector<bool> keep;                  // the triangles kept; empty: all
+    Eigen::Affine3d t;                       // to object mm
+  };
+  std::vector<Piece>& pieces() { return pieces_; }
+
+  // The object's triangles from `pieces`: x, y, z of each vertex (object mm) in `vertices`, three
+  // vertex indices per triangle in `triangles` (as the corners would be: mirrored by a mirroring
+  // transform).
+  static void gather(const std::vector<Piece>& pieces, std::vector<float>& vertices, std::vector<uint32_t>& triangles) {
+    size_t nv = 0, nt = 0;
+    for (const Piece& p : pieces) {
+      nv += p.data->vertices.size() / 3;
+      nt += p.data->triangles.size() / 3;
+    }
+    vertices.reserve(3 * nv);
+    triangles.reserve(3 * nt);
+    for (const Piece& p : pieces) {
+      const bool mirror = p.t.linear().determinant() < 0;
+      const uint32_t base = static_cast<uint32_t>(vertices.size() / 3);
+      const uint32_t* tri = p.data->triangles.data();
+      for (size_t i = 0, n = p.data->triangles.size() / 3; i < n; ++i, tri += 3) {
+        if (!p.keep.empty() && !p.keep[i]) continue;
+        triangles.insert(triangles.end(), {base + tri[0], base + tri[mirror ? 2 : 1], base + tri[mirror ? 1 : 2]});
+      }
+      const size_t at = vertices.size();
+      vertices.resize(at + p.data->vertices.size());
+      float* out = vertices.data() + at;
+      const float* in = p.data->vertices.data();
+      for (size_t i = 0, n = p.data->vertices.size() / 3; i < n; ++i, in += 3, out += 3) {
+        const Eigen::Vector3d q = p.t * Eigen::Vector3d(in[0], in[1], in[2]);
+        for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(q[k]);
+      }
+    }
+  }
 
  private:
   Status mesh(PLib3MFBase* obj, const Eigen::Affine3d& t) {
@@ -148,40 +194,38 @@ class Collector {
     DWORD id = 0;
     lib3mf_resource_getresourceid(obj, &id);
     const std::string name = utf8(obj, lib3mf_object_getnameutf8);
-    // A placeholder stands for a mesh the scanner read (threemf_meshes.h).
+    // A placeholder stands for a mesh the scanner read (threemf_meshes.h), its indices checked.
     if (nv == 3 && nt == 1)
       if (auto mark = threemf::placeholder_id(v[0].m_fPosition, v[1].m_fPosition, v[2].m_fPosition))
-        if (auto it = meshes_.find(*mark); it != meshes_.end()) {
-          const threemf::MeshData& d = it->second;
-          const size_t n = d.triangles.size() / 3;
-          return add(d.vertices.size() / 3, n, kept_triangles(id, n, name), t,
-                     [&](size_t i) { return &d.vertices[3 * i]; }, [&](size_t i) { return &d.triangles[3 * i]; });
-        }
-    return add(nv, nt, kept_triangles(id, nt, name), t, [&](size_t i) { return v[i].m_fPosition; },
-               [&](size_t i) { return tri[i].m_nIndices; });
-  }
-
-  // The triangles of a mesh of `nv` vertices (vertex(i): x, y, z) and `nt` triangles (triangle(i):
-  // three vertex indices), those `keep` keeps, through `t` into corners.
-  template <class Vertex, class Triangle>
-  Status add(size_t nv, size_t nt, const std::vector<bool>& keep, const Eigen::Affine3d& t, Vertex vertex,
-             Triangle triangle) {
-    const bool mirror = t.linear().determinant() < 0;
-    corners_.reserve(corners_.size() + 9 * nt);
+        if (auto it = meshes_.find(*mark); it != meshes_.end())
+          return add(&it->second, nullptr, kept_triangles(id, it->second.triangles.size() / 3, name), t);
+    auto own = std::make_unique<threemf::MeshData>();
+    own->vertices.reserve(3 * nv);
+    for (const auto& p : v) own->vertices.insert(own->vertices.end(), p.m_fPosition, p.m_fPosition + 3);
+    own->triangles.reserve(3 * nt);
+    for (const auto& p : tri) own->triangles.insert(own->triangles.end(), p.m_nIndices, p.m_nIndices + 3);
+    std::vector<bool> keep = kept_triangles(id, nt, name);
     for (size_t i = 0; i < nt; ++i) {
       if (!keep.empty() && !keep[i]) continue;
-      const auto* idx = triangle(i);
       for (int k = 0; k < 3; ++k)
-        if (idx[k] >= nv)
+        if (tri[i].m_nIndices[k] >= nv)
           return Error{file_, fmt::format("triangle {} refers to vertex {}, but the object has {} vertices (an index "
                                           "out of range); the file is damaged — export it again",
-                                          i + 1, idx[k], nv)};
-      for (int k : {0, mirror ? 2 : 1, mirror ? 1 : 2}) {
-        const float* p = vertex(idx[k]);
-        const Eigen::Vector3d q = t * Eigen::Vector3d(p[0], p[1], p[2]);
-        for (int d = 0; d < 3; ++d) corners_.push_back(static_cast<float>(q[d]));
-      }
+                                          i + 1, tri[i].m_nIndices[k], nv)};
     }
+    const threemf::MeshData* d = own.get();
+    return add(d, std::move(own), std::move(keep), t);
+  }
+
+  // A mesh `d` (whose indices are in range), those of its triangles `keep` keeps, through `t`.
+  Status add(const threemf::MeshData* d, std::unique_ptr<threemf::MeshData> own, std::vector<bool> keep,
+             const Eigen::Affine3d& t) {
+    vertex_count_ += d->vertices.size() / 3;
+    if (vertex_count_ > UINT32_MAX)
+      return Error{file_, fmt::format("{} vertices in one object are more than Tranche can load", vertex_count_)};
+    const size_t nt = d->triangles.size() / 3;
+    triangle_count_ += keep.empty() ? nt : static_cast<size_t>(std::count(keep.begin(), keep.end(), true));
+    pieces_.push_back(Piece{d, std::move(own), std::move(keep), t});
     return ok_status();
   }
 
@@ -218,7 +262,8 @@ class Collector {
   const threemf::Package& pkg_;
   const std::map<uint32_t, threemf::MeshData>& meshes_;
   Report& report_;
-  std::vector<float> corners_;
+  std::vector<Piece> pieces_;
+  size_t vertex_count_ = 0, triangle_count_ = 0;
 };
 
 // lib3mf's warnings, but for the missing UUIDs most writers leave out.
@@ -235,16 +280,19 @@ void forward_warnings(PLib3MFBase* reader, const std::string& file, Report& repo
   }
 }
 
-// The build items of a model read by lib3mf, one object each.
+// The build items of a model read by lib3mf, one object each. Items are read in order; the
+// welding of their meshes waits for finish(), which welds all objects at once, in parallel, and
+// then reports each item's warnings and the first error as reading them one by one would have.
 class Build {
  public:
   Build(const std::string& file, const threemf::Package& pkg, const std::map<uint32_t, threemf::MeshData>& meshes,
-        double mm, Report& report)
-      : file_(file), pkg_(pkg), meshes_(meshes), to_mm_(Eigen::Scaling(mm)), report_(report),
+        double mm)
+      : file_(file), pkg_(pkg), meshes_(meshes), to_mm_(Eigen::Scaling(mm)),
         stem_(std::filesystem::path(file).stem().string()) {}
 
   // Adds build item `number` (from 1); items that are no model, or empty, are left out with a warning.
   Status add(PLib3MFBase* item, int number) {
+    Report& report = log_.emplace_back();  // this item's warnings
     Handle obj;
     if (lib3mf_builditem_getobjectresource(item, obj.out()) != LIB3MF_OK)
       return Error{file_, fmt::format("build item {}: {}", number, lib3mf_message(item))};
@@ -256,9 +304,9 @@ class Build {
       const auto p = pkg_.prusa.find(id);
       name = p != pkg_.prusa.end() && !p->second.name.empty() ? p->second.name : stem_;
     }
-    const std::string where = fmt::format("{}, object '{}'", file_, name);
+    std::string where = fmt::format("{}, object '{}'", file_, name);
     if (type != MODELOBJECTTYPE_MODEL) {
-      report_.warn("3mf-ignored", where, "not a model object (a support or surface object): left out");
+      report.warn("3mf-ignored", where, "not a model object (a support or surface object): left out");
       return ok_status();
     }
     MODELTRANSFORM m{};
@@ -278,34 +326,74 @@ class Build {
     o.copy = instances_[id]++;
     o.transform = to_mm_ * t * to_mm_.inverse();
     if (auto it = first_.find(id); it != first_.end()) {
-      o.mesh = objects_[it->second].mesh;
+      copies_.emplace_back(objects_.size(), it->second);
     } else {
-      Collector c(file_, pkg_, meshes_, report_);
+      Collector c(file_, pkg_, meshes_, report);
       if (Status s = c.collect(obj.get(), to_mm_, 0); !s) return s;
-      if (c.corners().empty()) {
-        report_.warn("3mf-empty", where, "the object has no triangles to print: left out");
+      if (c.triangle_count() == 0) {
+        report.warn("3mf-empty", where, "the object has no triangles to print: left out");
         return ok_status();
       }
-      auto mesh = geo::weld_corners(c.corners(), where, report_);
-      if (!mesh) return mesh.error();
-      o.mesh = std::move(*mesh);
-      o.mesh.name = name;
       first_[id] = objects_.size();
+      welds_.push_back(Weld{objects_.size(), log_.size() - 1, std::move(where), std::move(c.pieces()), std::nullopt});
     }
     objects_.push_back(std::move(o));
+    return ok_status();
+  }
+
+  // Welds the objects' meshes; the warnings go to `report`. `stop`: the error reading the items
+  // ended with, reported after the items before it, as their welding would have come first.
+  Status finish(Status stop, Report& report) {
+    tbb::parallel_for(size_t{0}, welds_.size(), [&](size_t i) {
+      Weld& w = welds_[i];
+      // One mesh taken whole, in mm, unturned: welded as it was read (the identity would give the
+      // same floats, but for -0, which the welding makes +0 either way).
+      if (w.pieces.size() == 1 && w.pieces[0].keep.empty() && w.pieces[0].t.matrix() == Eigen::Matrix4d::Identity()) {
+        w.mesh = geo::weld_indexed(w.pieces[0].data->vertices, w.pieces[0].data->triangles, w.where, log_[w.item]);
+        w.pieces.clear();
+        return;
+      }
+      std::vector<float> vertices;
+      std::vector<uint32_t> triangles;
+      Collector::gather(w.pieces, vertices, triangles);
+      w.pieces.clear();
+      w.mesh = geo::weld_indexed(vertices, triangles, w.where, log_[w.item]);
+    });
+    size_t next = 0;  // of welds_, in item order
+    for (size_t item = 0; item < log_.size(); ++item) {
+      for (const Warning& w : log_[item].warnings()) report.warn(w.code, w.where, w.message);
+      if (next < welds_.size() && welds_[next].item == item) {
+        Weld& w = welds_[next++];
+        if (!*w.mesh) return w.mesh->error();
+        objects_[w.object].mesh = std::move(**w.mesh);
+        objects_[w.object].mesh.name = objects_[w.object].name;
+      }
+    }
+    if (!stop) return stop;
+    for (const auto& [copy, first] : copies_) objects_[copy].mesh = objects_[first].mesh;
     return ok_status();
   }
 
   std::vector<Object>& objects() { return objects_; }
 
  private:
+  struct Weld {
+    size_t object;  // in objects_
+    size_t item;    // in log_
+    std::string where;
+    std::vector<Collector::Piece> pieces;
+    std::optional<Result<geo::Mesh>> mesh;
+  };
+
   const std::string& file_;
   const threemf::Package& pkg_;
   const std::map<uint32_t, threemf::MeshData>& meshes_;
   const Eigen::Affine3d to_mm_;
-  Report& report_;
   const std::string stem_;
   std::vector<Object> objects_;
+  std::deque<Report> log_;  // by build item read
+  std::deque<Weld> welds_;  // a deque: a Weld is not copied, and its move may throw
+  std::vector<std::pair<size_t, size_t>> copies_;  // (object, object of its first instance)
   std::map<DWORD, int> instances_;  // resource id -> build items seen
   std::map<DWORD, size_t> first_;   // resource id -> index in objects_ of its first instance
 };
@@ -332,15 +420,18 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
   lib3mf_model_getunit(model.get(), &unit);
   Handle items;
   if (lib3mf_model_getbuilditems(model.get(), items.out()) != LIB3MF_OK) return read_error(file, model.get());
-  Build build(file, *pkg, split.meshes, unit_mm(unit), report);
+  Build build(file, *pkg, split.meshes, unit_mm(unit));
   BOOL has = false;
   int number = 0;
-  while (lib3mf_builditemiterator_movenext(items.get(), &has) == LIB3MF_OK && has) {
+  Status stop = ok_status();
+  while (stop && lib3mf_builditemiterator_movenext(items.get(), &has) == LIB3MF_OK && has) {
     Handle item;
     if (lib3mf_builditemiterator_getcurrent(items.get(), item.out()) != LIB3MF_OK)
-      return Error{file, fmt::format("build item {}: {}", number + 1, lib3mf_message(items.get()))};
-    if (Status s = build.add(item.get(), ++number); !s) return s.error();
+      stop = Error{file, fmt::format("build item {}: {}", number + 1, lib3mf_message(items.get()))};
+    else
+      stop = build.add(item.get(), ++number);
   }
+  if (Status s = build.finish(std::move(stop), report); !s) return s.error();
   if (build.objects().empty() && number == 0)
     if (Status s = threemf::check_model_xml(whole, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file); !s)
       return s.error();

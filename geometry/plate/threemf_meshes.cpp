@@ -2,8 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cfloat>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 namespace tranche::plate::threemf {
 namespace {
@@ -15,10 +21,110 @@ constexpr uint32_t kMaxId = 1u << 24;
 
 bool space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
+bool digit(char c) { return static_cast<unsigned char>(c - '0') < 10; }
+
+// The number std::from_chars reads from [p, end) into `out`, and the end of what it read (nullptr:
+// nothing). The forms nearly every writer uses are read here, giving the same value from_chars
+// would; every other form goes to from_chars.
+// How many of the 8 bytes of `chunk` (in memory order) are decimal digits before the first that is not.
+int leading_digits(uint64_t chunk) {
+  // A byte is a digit when its high nibble is 3 and its low nibble plus 6 stays below 16; the
+  // bytes that are not get a nonzero value, and the first of those is found by its lowest bit.
+  const uint64_t not_digit =
+      ((chunk & 0xF0F0F0F0F0F0F0F0ull) ^ 0x3030303030303030ull) | (((chunk & 0x0F0F0F0F0F0F0F0Full) + 0x0606060606060606ull) & 0x1010101010101010ull);
+  return not_digit ? std::countr_zero(not_digit) / 8 : 8;
+}
+
+// The value of the n (1 to 8) digits at the start of `chunk` (eight digits at once: the bytes
+// are paired, then the pairs, then the fours).
+uint32_t digits_value(uint64_t chunk, int n) {
+  uint64_t v = (chunk - 0x3030303030303030ull) << (8 * (8 - n));  // leading zeros in front
+  v = (v * 10) + (v >> 8);
+  v = (((v & 0x000000FF000000FFull) * (100 + (1000000ull << 32))) +
+       (((v >> 16) & 0x000000FF000000FFull) * (1 + (10000ull << 32)))) >>
+      32;
+  return static_cast<uint32_t>(v);
+}
+
+const char* number(const char* p, const char* end, uint32_t& out) {
+  if (end - p >= 8) {  // up to 7 digits at once (and what follows them is no digit)
+    uint64_t chunk;
+    std::memcpy(&chunk, p, 8);
+    if constexpr (std::endian::native == std::endian::little) {
+      const int n = leading_digits(chunk);
+      if (n > 0 && n < 8) {
+        out = digits_value(chunk, n);
+        return p + n;
+      }
+    }
+  }
+  const char* q = p;
+  uint64_t v = 0;
+  while (q < end && digit(*q) && v <= UINT32_MAX) v = v * 10 + static_cast<unsigned>(*q++ - '0');
+  if (q < end && digit(*q)) v = uint64_t{UINT32_MAX} + 1;  // too many digits: out of range
+  if (q == p || v > UINT32_MAX) return nullptr;
+  out = static_cast<uint32_t>(v);
+  return q;
+}
+
+// The digits at q appended to m (m * 10^n + their value), q moved past them; their count n. Past
+// 19 digits m wraps: the caller looks at the count.
+int append_digits(const char*& q, const char* end, uint64_t& m) {
+  static constexpr uint64_t kPow10[8] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
+  if constexpr (std::endian::native == std::endian::little) {
+    if (end - q >= 8) {
+      uint64_t chunk;
+      std::memcpy(&chunk, q, 8);
+      const int n = leading_digits(chunk);
+      if (n < 8) {
+        if (n > 0) m = m * kPow10[n] + digits_value(chunk, n);
+        q += n;
+        return n;
+      }
+    }
+  }
+  int n = 0;
+  for (; q < end && digit(*q); ++q, ++n) m = m * 10 + static_cast<unsigned>(*q - '0');
+  return n;
+}
+
+const char* number(const char* p, const char* end, float& out) {
+  // [-]digits[.digits]: m / 10^k is exact in double arithmetic while m < 2^53 and k <= 22 (one
+  // correctly rounded division, Clinger's fast path), and the double then rounds to the float
+  // the decimal itself rounds to, unless it lies exactly halfway between two floats.
+  const char* q = p;
+  const bool minus = q < end && *q == '-';
+  q += minus;
+  uint64_t m = 0;
+  int digits = 0, k = 0;
+  const int whole = append_digits(q, end, m);
+  digits += whole;
+  if (whole > 0 && q < end && *q == '.') {
+    ++q;
+    k = append_digits(q, end, m);
+    digits += k;
+  }
+  static constexpr double kTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const bool plain = digits > 0 && digits <= 15 && (q == end || (*q != 'e' && *q != 'E' && !digit(*q)));
+  if (plain) {
+    const double d = static_cast<double>(m) / kTen[k];
+    uint64_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    const float f = static_cast<float>(d);
+    // Halfway between two floats: the low 29 of the double's 52 fraction bits are 1 then zeros.
+    if ((bits & ((uint64_t{1} << 29) - 1)) != (uint64_t{1} << 28) && (m == 0 || std::fabs(f) >= FLT_MIN)) {
+      out = minus ? -f : f;
+      return q;
+    }
+  }
+  const auto [e, ec] = std::from_chars(p, end, out);
+  return ec == std::errc() ? e : nullptr;
+}
+
 template <class T>
 bool parse(std::string_view v, T& out) {
-  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
-  return ec == std::errc() && end == v.data() + v.size();
+  return number(v.data(), v.data() + v.size(), out) == v.data() + v.size();
 }
 
 // A cursor over the XML text that reads the few forms a plain mesh is written in.
@@ -29,15 +135,22 @@ class Scanner {
   void skip_space() {
     while (i_ < s_.size() && space(s_[i_])) ++i_;
   }
-  bool eat(std::string_view lit) {
-    if (s_.compare(i_, lit.size(), lit) != 0) return false;
-    i_ += lit.size();
+  // Whether the text at the cursor is `lit` (a literal: its length is known when compiling).
+  template <size_t N>
+  bool at(const char (&lit)[N], size_t from) const {
+    return s_.size() - from >= N - 1 && std::memcmp(s_.data() + from, lit, N - 1) == 0;
+  }
+  template <size_t N>
+  bool eat(const char (&lit)[N]) {
+    if (!at(lit, i_)) return false;
+    i_ += N - 1;
     return true;
   }
   // `<name` followed by a space, '>' or '/': consumed.
-  bool open(std::string_view name) {
-    const size_t after = i_ + 1 + name.size();
-    if (after >= s_.size() || s_[i_] != '<' || s_.compare(i_ + 1, name.size(), name) != 0) return false;
+  template <size_t N>
+  bool open(const char (&name)[N]) {
+    const size_t after = i_ + N;  // '<' and the name
+    if (after >= s_.size() || s_[i_] != '<' || !at(name, i_ + 1)) return false;
     const char c = s_[after];
     if (!space(c) && c != '>' && c != '/') return false;
     i_ = after;
@@ -69,30 +182,28 @@ class Scanner {
     }
   }
   // The fast way through the form most writers use, `<vertex x="1" y="2" z="3"/>` or `<triangle
-  // v1="0" v2="1" v3="2" />` (`names` holds the three attributes' `name="` in order): the values,
+  // v1="0" v2="1" v3="2" />` (`names` holds the three attributes' ` name="` in order): the values,
   // and the cursor past the tag; false (the cursor unmoved) for any other form.
-  template <class T>
-  bool three(std::string_view tag, const std::string_view (&names)[3], T (&out)[3]) {
-    size_t i = i_;
-    if (s_.compare(i, tag.size(), tag) != 0) return false;
-    i += tag.size();
+  template <class T, size_t NT, size_t NA>
+  bool three(const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3]) {
+    if (!at(tag, i_)) return false;
+    size_t i = i_ + NT - 1;
+    const char* end = s_.data() + s_.size();
     for (int k = 0; k < 3; ++k) {
-      if (i >= s_.size() || s_[i] != ' ') return false;
-      ++i;
-      if (s_.compare(i, names[k].size(), names[k]) != 0) return false;
-      i += names[k].size();
-      const char* end = s_.data() + s_.size();
-      const auto [p, ec] = std::from_chars(s_.data() + i, end, out[k]);
-      if (ec != std::errc() || p == end || *p != '"') return false;
+      if (!at(names[k], i)) return false;
+      i += NA - 1;
+      const char* p = number(s_.data() + i, end, out[k]);
+      if (!p || p == end || *p != '"') return false;
       i = static_cast<size_t>(p - s_.data()) + 1;
     }
     while (i < s_.size() && space(s_[i])) ++i;
-    if (s_.compare(i, 2, "/>") != 0) return false;
+    if (!at("/>", i)) return false;
     i_ = i + 2;
     return true;
   }
   // `<name ...>` (not closed by itself), its attributes ignored.
-  bool start(std::string_view name) {
+  template <size_t N>
+  bool start(const char (&name)[N]) {
     if (!open(name)) return false;
     const auto closed = attributes([](std::string_view, std::string_view) { return true; });
     return closed && !*closed;
@@ -108,7 +219,7 @@ bool vertices(Scanner& sc, std::vector<float>& out) {
   for (;;) {
     sc.skip_space();
     if (sc.eat("</vertices>")) return true;
-    static constexpr std::string_view kXyz[3] = {"x=\"", "y=\"", "z=\""};
+    static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
     float xyz[3];
     if (sc.three("<vertex", kXyz, xyz)) {
       if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return false;
@@ -132,7 +243,7 @@ bool triangles(Scanner& sc, std::vector<uint32_t>& out) {
   for (;;) {
     sc.skip_space();
     if (sc.eat("</triangles>")) return true;
-    static constexpr std::string_view kV123[3] = {"v1=\"", "v2=\"", "v3=\""};
+    static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
       out.insert(out.end(), v, v + 3);
@@ -174,38 +285,112 @@ std::string placeholder(uint32_t id) {
       id, kMarkY, kMarkY + 1);
 }
 
+// Where "<object" is in `xml`, in order. Searched for by its 'j', which the elements of a mesh
+// never hold (memchr is fast where its byte is rare), in parallel slices of the text.
+std::vector<size_t> find_objects(std::string_view xml) {
+  constexpr size_t kSlice = size_t{8} << 20;
+  const size_t slices = (xml.size() + kSlice - 1) / kSlice;
+  std::vector<std::vector<size_t>> found(slices);
+  tbb::parallel_for(size_t{0}, slices, [&](size_t i) {
+    const char* begin = xml.data();
+    const char* p = begin + i * kSlice;
+    const char* end = begin + std::min(xml.size(), (i + 1) * kSlice);
+    const char* text_end = begin + xml.size();
+    while ((p = static_cast<const char*>(std::memchr(p, 'j', static_cast<size_t>(end - p)))) != nullptr) {
+      // "<ob" before the 'j', "ect" after it
+      if (p - begin >= 3 && text_end - p >= 4 && std::memcmp(p - 3, "<object", 7) == 0)
+        found[i].push_back(static_cast<size_t>(p - 3 - begin));
+      ++p;
+    }
+  });
+  std::vector<size_t> out;
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
+
 }  // namespace
 
 SplitModel split_meshes(std::string_view xml) {
   SplitModel out;
-  // A mesh is replaced only where it was read whole, element after element: a comment or CDATA
-  // section cannot begin or end inside it (the mesh would not read), so a mesh in a comment is
-  // replaced in the comment, which lib3mf skips, and an object of the same id after it is left
-  // to lib3mf (ids are taken once).
+  // Read as one pass would: an object after another, from `at`; a mesh read whole moves `at` past
+  // it, else the search goes on after the object's tag. A mesh is replaced only where it was read
+  // whole, element after element: a comment or CDATA section cannot begin or end inside it (the
+  // mesh would not read), so a mesh in a comment is replaced in the comment, which lib3mf skips,
+  // and an object of the same id after it is left to lib3mf (ids are taken once).
+  //
+  // The meshes are read in parallel: the next few objects' tags are read ahead as if no mesh
+  // before them read (a mesh that does read may hold them, in attribute values: they are then
+  // passed over), their meshes are read at once, and the objects are then taken in order.
+  struct Ahead {
+    size_t at = 0;                  // of "<object"
+    size_t after = 0;               // past its tag; 0: no object tag there
+    bool broken = false;            // the tag is not read to its end: the rest is lib3mf's
+    std::optional<uint32_t> id;     // when the tag is not closed by itself
+    size_t start = 0, end = 0;      // of the mesh, if it reads
+    std::optional<MeshData> mesh;
+  };
+  constexpr size_t kAhead = 16;
+  const std::vector<size_t> objects = find_objects(xml);
+  const auto next_object = [&](size_t from) {
+    const auto it = std::lower_bound(objects.begin(), objects.end(), from);
+    return it == objects.end() ? std::string_view::npos : *it;
+  };
   size_t copied = 0;  // xml[0, copied) is in out.model
-  for (size_t at = xml.find("<object"); at != std::string_view::npos; at = xml.find("<object", at)) {
-    Scanner sc(xml, at);
-    if (!sc.open("object")) {
-      at += 7;
-      continue;
+  size_t at = next_object(0);
+  bool done = false;
+  std::vector<Ahead> batch;
+  while (!done && at != std::string_view::npos) {
+    batch.clear();
+    for (size_t p = at; batch.size() < kAhead;) {
+      p = next_object(p);
+      if (p == std::string_view::npos) break;
+      Ahead& a = batch.emplace_back();
+      a.at = p;
+      Scanner sc(xml, p);
+      if (!sc.open("object")) {
+        p += 7;
+        continue;
+      }
+      std::optional<uint32_t> id;
+      const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
+        uint32_t v = 0;
+        if (name == "id" && parse(value, v)) id = v;
+        return true;
+      });
+      if (!closed) {
+        a.broken = true;
+        break;
+      }
+      a.after = p = sc.pos();
+      if (!*closed) a.id = id;
     }
-    std::optional<uint32_t> id;
-    const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
-      uint32_t v = 0;
-      if (name == "id" && parse(value, v)) id = v;
-      return true;
+    tbb::parallel_for(size_t{0}, batch.size(), [&](size_t i) {
+      Ahead& a = batch[i];
+      if (!a.id || *a.id >= kMaxId) return;
+      Scanner sc(xml, a.after);
+      sc.skip_space();
+      a.start = sc.pos();
+      a.mesh = mesh(sc);
+      a.end = sc.pos();
     });
-    if (!closed) break;  // a tag not read to its end: the rest is lib3mf's
-    at = sc.pos();
-    if (*closed || !id || *id >= kMaxId || out.meshes.count(*id)) continue;
-    sc.skip_space();
-    const size_t start = sc.pos();
-    auto m = mesh(sc);
-    if (!m) continue;  // lib3mf reads this one
-    out.model.append(xml.substr(copied, start - copied));
-    out.model += placeholder(*id);
-    copied = at = sc.pos();
-    out.meshes.emplace(*id, std::move(*m));
+    for (Ahead& a : batch) {
+      if (a.at < at) continue;  // inside a mesh read
+      if (a.broken) {
+        done = true;
+        break;
+      }
+      if (!a.after) {
+        at = a.at + 7;
+        continue;
+      }
+      at = a.after;
+      if (!a.id || *a.id >= kMaxId || out.meshes.count(*a.id) || !a.mesh) continue;
+      out.model.append(xml.substr(copied, a.start - copied));
+      out.model += placeholder(*a.id);
+      copied = at = a.end;
+      out.meshes.emplace(*a.id, std::move(*a.mesh));
+    }
+    if (!done) at = next_object(at);
   }
   if (out.meshes.empty()) return SplitModel{};
   out.model.append(xml.substr(copied));

@@ -353,9 +353,9 @@ std::string without_meshes(std::string_view bytes, const std::string& root, cons
   auto zip = ZipArchive::open(bytes, file);
   const ZipEntry* model = zip ? zip->find(root) : nullptr;
   if (!model) return {};
-  auto xml = zip->read(*model, kPartLimit);
+  auto xml = zip->read_bytes(*model, kPartLimit);
   if (!xml) return {};
-  split = split_meshes(*xml);
+  split = split_meshes(xml->view());
   if (split.meshes.empty()) return {};
   std::vector<std::pair<std::string, std::string>> parts;
   for (const ZipEntry& e : zip->entries()) {

@@ -71,6 +71,16 @@ inline void put(std::string& out, uint64_t v, int n) {
   for (int i = 0; i < n; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
 }
 
+inline uint64_t le32(const std::string& b, size_t at) {
+  uint64_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(b[at + i]);
+  return v;
+}
+
+inline uint32_t crc_of(const std::string& content) {
+  return static_cast<uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(content.data()), static_cast<uInt>(content.size())));
+}
+
 // A ZIP archive whose entries are deflated (method 8), as PrusaSlicer and Python write them.
 inline std::string deflated_zip(const std::vector<std::pair<std::string, std::string>>& files) {
   std::string out, dir;

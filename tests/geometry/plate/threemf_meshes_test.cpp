@@ -2,8 +2,12 @@
 // to lib3mf, and that a model loads the same either way.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cstring>
 #include <fstream>
 #include <iterator>
+#include <random>
 
 #include "geometry/mesh/primitives.h"
 #include "geometry/plate/threemf.h"
@@ -104,4 +108,148 @@ TEST_CASE("3mf meshes: a model loads the same through the scanner as through lib
     CHECK((*fast)[i].mesh.triangles.size() == (i == 0 ? torus : box).mesh.triangles.size());
   }
   CHECK(report.empty());
+}
+
+namespace {
+
+// The x coordinates the scanner reads from `texts`, each the x of a vertex of one mesh.
+std::vector<float> scanned_x(const std::vector<std::string>& texts) {
+  std::string v;
+  for (const auto& t : texts) v += "<vertex x=\"" + t + "\" y=\"0\" z=\"0\"/>";
+  const std::string xml = model("<object id=\"1\" type=\"model\"><mesh><vertices>" + v +
+                                    "</vertices><triangles><triangle v1=\"0\" v2=\"1\" v3=\"2\"/></triangles></mesh>"
+                                    "</object>",
+                                "<item objectid=\"1\"/>");
+  const auto s = threemf::split_meshes(xml);
+  REQUIRE(s.meshes.size() == 1);
+  const auto& m = s.meshes.at(1);
+  std::vector<float> out;
+  for (size_t i = 0; i < m.vertices.size(); i += 3) out.push_back(m.vertices[i]);
+  return out;
+}
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in every form") {
+  std::vector<std::string> texts = {
+      "0", "-0", "1", "-1.5", "19.000000", "18.998026", "0.125643", "5.", "007.250", "1e1", "1.5E-3", "-2.5e+2",
+      "3.4028234e38", "1e-40",  // a subnormal float: from_chars reads it
+      "16777217", "16777219", "-16777217.00", "8388609.5",  // exactly halfway between two floats
+      "0.1", "0.2", "0.3", "123456.789012345", "1234567890123456789", "0.000000000000000000001",
+      "3.141592653589793238462643383279"};
+  std::mt19937 rng(1313);
+  std::uniform_real_distribution<double> u(-500, 500);
+  for (int i = 0; i < 3000; ++i) {
+    const double d = u(rng);
+    texts.push_back(fmt::format("{:.{}f}", d, i % 12));  // fixed, 0 to 11 decimals
+    texts.push_back(fmt::format("{:.{}g}", d, 1 + i % 17));
+    texts.push_back(fmt::format("{}", static_cast<float>(d)));  // shortest round trip
+  }
+  const std::vector<float> got = scanned_x(texts);
+  REQUIRE(got.size() == texts.size());
+  int wrong = 0;
+  for (size_t i = 0; i < texts.size(); ++i) {
+    float want = 0;
+    const auto [end, ec] = std::from_chars(texts[i].data(), texts[i].data() + texts[i].size(), want);
+    REQUIRE(ec == std::errc());
+    REQUIRE(end == texts[i].data() + texts[i].size());
+    if (!same_bits(got[i], want)) {
+      if (++wrong < 10) MESSAGE(texts[i], ": ", got[i], " instead of ", want);
+    }
+  }
+  CHECK(wrong == 0);
+  CHECK(same_bits(got[1], -0.0f));
+  CHECK(got[14] == 16777216.0f);  // halfway: to even
+  CHECK(got[15] == 16777220.0f);
+}
+
+TEST_CASE("3mf meshes: indices are read as std::from_chars reads them; too large ones are left to lib3mf") {
+  auto indices = [](const std::string& v1) {
+    const std::string xml = model("<object id=\"1\"><mesh><vertices><vertex x=\"0\" y=\"0\" z=\"0\"/><vertex x=\"1\" "
+                                  "y=\"0\" z=\"0\"/><vertex x=\"0\" y=\"1\" z=\"0\"/></vertices><triangles><triangle "
+                                  "v1=\"" + v1 + "\" v2=\"1\" v3=\"2\"/></triangles></mesh></object>",
+                                  "<item objectid=\"1\"/>");
+    return threemf::split_meshes(xml);
+  };
+  CHECK(indices("0").meshes.at(1).triangles == std::vector<uint32_t>{0, 1, 2});
+  CHECK(indices("0000").meshes.at(1).triangles == std::vector<uint32_t>{0, 1, 2});
+  for (const char* bad : {"4294967296", "99999999999999999999", "-0", "+0", "0x0", "", "1.0", " 0"}) {
+    CAPTURE(bad);
+    CHECK(indices(bad).meshes.empty());
+  }
+}
+
+TEST_CASE("3mf meshes: unusual whitespace and attribute order are read the same") {
+  const std::string plain = model(
+      "<object id=\"3\"><mesh><vertices><vertex x=\"1\" y=\"2\" z=\"3\"/><vertex x=\"4\" y=\"5\" z=\"6\"/><vertex "
+      "x=\"7\" y=\"8\" z=\"9\"/></vertices><triangles><triangle v1=\"0\" v2=\"1\" v3=\"2\"/></triangles></mesh></object>",
+      "<item objectid=\"3\"/>");
+  const std::string odd = model(
+      "<object\n id = '3'\t>\r\n <mesh >\n\t<vertices\n>\n\t\t<vertex\n\t\t\tz = \"3\"  y='2'\r\n x=\"1\" />\n"
+      "<vertex x=\"4\"\ty=\"5\"\nz=\"6\"/><vertex  x=\"7\"  y=\"8\"  z=\"9\"  /></vertices>\n<triangles>"
+      "<triangle v3=\"2\" p1=\"0\" v1=\"0\" v2 = '1' />\n</triangles>\n</mesh></object>",
+      "<item objectid=\"3\"/>");
+  const auto a = threemf::split_meshes(plain), b = threemf::split_meshes(odd);
+  REQUIRE(a.meshes.size() == 1);
+  REQUIRE(b.meshes.size() == 1);
+  CHECK(a.meshes.at(3).vertices == b.meshes.at(3).vertices);
+  CHECK(a.meshes.at(3).triangles == b.meshes.at(3).triangles);
+  CHECK(b.meshes.at(3).vertices == std::vector<float>{1, 2, 3, 4, 5, 6, 7, 8, 9});
+  // With a comment among the vertices, the mesh is left to lib3mf, which reads the same.
+  std::string spaced = odd;
+  spaced.replace(spaced.find("</vertices>"), 0, "<!-- lib3mf's -->");
+  REQUIRE(threemf::split_meshes(spaced).meshes.empty());
+  Report report;
+  auto fast = tranche::plate::parse_3mf(package(odd), "odd.3mf", report);
+  auto slow = tranche::plate::parse_3mf(package(spaced), "odd.3mf", report);
+  REQUIRE_MESSAGE(fast.ok(), fast.error().to_string());
+  REQUIRE_MESSAGE(slow.ok(), slow.error().to_string());
+  REQUIRE(fast->size() == 1);
+  REQUIRE(slow->size() == 1);
+  CHECK((*fast)[0].mesh.triangles == (*slow)[0].mesh.triangles);
+  REQUIRE((*fast)[0].mesh.vertices.size() == 3);
+  REQUIRE((*slow)[0].mesh.vertices.size() == 3);
+  for (size_t i = 0; i < 3; ++i) {
+    CHECK((*fast)[0].mesh.vertices[i].x == (*slow)[0].mesh.vertices[i].x);
+    CHECK((*fast)[0].mesh.vertices[i].z == (*slow)[0].mesh.vertices[i].z);
+  }
+}
+
+TEST_CASE("3mf meshes: many objects are read in order, as one pass would read them") {
+  // 40 objects (more than are read ahead at once); object 5's mesh holds, in an attribute value,
+  // the text of an object 77 with a mesh (passed over: it is inside a mesh read); object 9 is
+  // given twice (the second left to lib3mf); an object tag never closed ends the reading.
+  std::string resources;
+  for (int id = 1; id <= 40; ++id) {
+    std::string mesh = box_mesh(id, 1, 1);
+    if (id == 5)
+      mesh.replace(mesh.find("<triangle ") + 9, 0,
+                   " p1='<object id=\"77\"><mesh><vertices><vertex x=\"0\" y=\"0\" z=\"0\"/><vertex x=\"1\" y=\"0\" "
+                   "z=\"0\"/><vertex x=\"0\" y=\"1\" z=\"0\"/></vertices><triangles><triangle v1=\"0\" v2=\"1\" "
+                   "v3=\"2\"/></triangles></mesh></object>'");
+    resources += fmt::format("<object id=\"{}\" type=\"model\">{}</object>", id, mesh);
+    if (id == 20) resources += "<object id=\"9\" type=\"model\">" + box_mesh(99, 1, 1) + "</object>";
+  }
+  const auto s = threemf::split_meshes(model(resources, "<item objectid=\"1\"/>"));
+  REQUIRE(s.meshes.size() == 40);
+  for (int id = 1; id <= 40; ++id) {
+    CAPTURE(id);
+    REQUIRE(s.meshes.count(id));
+    CHECK(*std::max_element(s.meshes.at(id).vertices.begin(), s.meshes.at(id).vertices.end()) ==
+          static_cast<float>(std::max(id, 1)));
+    CHECK(s.meshes.at(id).triangles.size() == 36);
+  }
+  CHECK_FALSE(s.meshes.count(77));
+  CHECK(s.model.find("x=\"99\"") != std::string::npos);  // the second object 9, left in place
+  CHECK(s.model.find("object id=\"77\"") == std::string::npos);  // gone with object 5's mesh
+
+  auto box_object = [](int id) {
+    return fmt::format("<object id=\"{}\" type=\"model\">{}</object>", id, box_mesh(1, 1, 1));
+  };
+  const std::string cut = model(box_object(1) + "<object id=\"2\" name=\"never closed" + box_object(3), "");
+  const auto c = threemf::split_meshes(cut);
+  CHECK(c.meshes.size() == 1);
+  CHECK(c.meshes.count(1));
 }

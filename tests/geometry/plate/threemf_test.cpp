@@ -237,3 +237,61 @@ TEST_CASE("3mf: support objects are left out with a warning") {
   CHECK(objects->size() == 1);
   CHECK(report.count("3mf-ignored") == 1);
 }
+
+TEST_CASE("3mf: objects welded together report as one by one: warnings in item order, the first error") {
+  // A box with one extra triangle that welds to a degenerate one; a box of which every triangle
+  // is degenerate (all its corners at one point); a support object (a warning of its own).
+  std::string with_degenerate = box_mesh(10, 10, 10);
+  with_degenerate.replace(with_degenerate.find("</triangles>"), 0, "<triangle v1=\"0\" v2=\"0\" v3=\"1\"/>");
+  const std::string flat_mesh =
+      "<mesh><vertices><vertex x=\"1\" y=\"1\" z=\"1\"/><vertex x=\"1\" y=\"1\" z=\"1\"/><vertex x=\"1\" y=\"1\" "
+      "z=\"1\"/></vertices><triangles><triangle v1=\"0\" v2=\"1\" v3=\"2\"/></triangles></mesh>";
+  const std::string objects = "<object id=\"1\" name=\"first\" type=\"model\">" + with_degenerate +
+                              "</object><object id=\"2\" name=\"prop\" type=\"support\">" + box_mesh(2, 2, 2) +
+                              "</object><object id=\"3\" name=\"second\" type=\"model\">" + with_degenerate +
+                              "</object><object id=\"4\" name=\"point\" type=\"model\">" + flat_mesh + "</object>";
+  SUBCASE("all load: the warnings in the order of the items") {
+    Report report;
+    auto r = load(package(model(objects, "<item objectid=\"3\"/><item objectid=\"2\"/><item objectid=\"1\"/>")), report);
+    REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+    REQUIRE(r->size() == 2);
+    CHECK((*r)[0].name == "second");
+    CHECK((*r)[1].name == "first");
+    CHECK((*r)[0].mesh.triangles.size() == 12);
+    const auto w = report.warnings();
+    REQUIRE(w.size() == 3);
+    CHECK(w[0].code == "mesh-degenerate");
+    CHECK(has(w[0].where, "'second'"));
+    CHECK(w[1].code == "3mf-ignored");
+    CHECK(w[2].code == "mesh-degenerate");
+    CHECK(has(w[2].where, "'first'"));
+  }
+  SUBCASE("an object with no surface: its error, after the warnings of the items before it") {
+    Report report;
+    auto r = load(package(model(objects, "<item objectid=\"1\"/><item objectid=\"4\"/><item objectid=\"3\"/>")), report);
+    REQUIRE_FALSE(r.ok());
+    CHECK(has(r.error().to_string(), "'point'"));
+    CHECK(has(r.error().to_string(), "all 1 triangles are degenerate"));
+    const auto w = report.warnings();
+    REQUIRE(w.size() == 1);  // the first object's; the third is not reached
+    CHECK(has(w[0].where, "'first'"));
+  }
+  SUBCASE("a build item lib3mf refuses after an object that cannot be welded: the weld's error comes first") {
+    Report report;
+    auto r = load(package(model(objects, "<item objectid=\"4\"/><item objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 0 0 0 0\"/>")),
+                  report);
+    REQUIRE_FALSE(r.ok());
+    CHECK(has(r.error().to_string(), "'point'"));
+  }
+  SUBCASE("a repeated build item shares its object's mesh") {
+    Report report;
+    auto r = load(package(model(objects, "<item objectid=\"1\"/><item objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 30 0 0\"/>")),
+                  report);
+    REQUIRE_MESSAGE(r.ok(), r.error().to_string());
+    REQUIRE(r->size() == 2);
+    CHECK((*r)[1].copy == 1);
+    CHECK((*r)[1].mesh.triangles == (*r)[0].mesh.triangles);
+    CHECK((*r)[1].mesh.vertices.size() == (*r)[0].mesh.vertices.size());
+    CHECK(report.count("mesh-degenerate") == 1);
+  }
+}
