@@ -64,6 +64,8 @@ std::string_view type_name(PathKind k) {
       return "Support material interface";
     case PathKind::Brim:
       return "Skirt/Brim";
+    case PathKind::GapFill:
+      return "Gap fill";
   }
   return "Custom";
 }
