@@ -31,8 +31,7 @@ while read -r name model _vol; do
   for s in $SLICERS; do
     g="$out/$name.$s.gcode"
     case $s in
-      tranche_classic) CMD=("$TRANCHE" slice "$model" -o "$g" --quiet "${TRANCHE_SETS[@]}" --set wall_generator=classic) ;;
-      tranche_variable) CMD=("$TRANCHE" slice "$model" -o "$g" --quiet "${TRANCHE_SETS[@]}" --set wall_generator=variable) ;;
+      tranche_classic | tranche_variable) peer_cmd "$s" "$model" "$g" || continue ;;
       prusa_classic | prusa_arachne)
         command -v prusa-slicer >/dev/null || continue
         peer_cmd prusa "$model" "$g" || continue

@@ -299,6 +299,15 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   ss.bottom_layers = static_cast<int>(P[PropId::BottomLayers]);
   ss.density = P[PropId::InfillDensity];
   ss.width = spec.fill_width;
+  if (P[PropId::VerticalShell] != 0 && !spec.widths.empty()) {
+    // Half the perimeters' band (the innermost loop's centreline distance plus half its
+    // spacing). Measured on PrusaSlicer's torus (bench_quality.sh): the whole band gives 1.19×
+    // PrusaSlicer's plastic, half of it 0.99× (without: 0.90×), coverage and overlap unchanged.
+    double band = 0.5 * spec.widths[0];
+    for (size_t k = 1; k < spec.widths.size(); ++k)
+      band += toolpath::bead_spacing_mm(spec.widths[k - 1], spec.widths[k], height_mm);
+    ss.shell_mm = 0.5 * (band + 0.5 * toolpath::bead_spacing_mm(spec.widths.back(), height_mm));
+  }
   const double angle = P[PropId::FillAngle];
   auto fill = toolpath::split_fill(per.fill_region, nb, ss);
   // Solid zig-zags leave small notches between line ends on the side without a connector; their

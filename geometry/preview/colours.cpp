@@ -35,7 +35,7 @@ Rgb kind_colour(PathKind k) {
     case PathKind::Brim:
       return {0x00, 0x87, 0x6e};
     case PathKind::GapFill:
-      return {0xff, 0xff, 0xff};  // PrusaSlicer's gap fill colour
+      return {0xa0, 0xa0, 0xa0};  // grey: PrusaSlicer's white would vanish on the white page
   }
   return {0x80, 0x80, 0x80};
 }

@@ -8,6 +8,9 @@
 
 namespace tranche::toolpath {
 
+std::vector<VarBead> axis_beads_only(const geo::Rings& region, const BeadSpec& spec);
+std::vector<VarBead> blob_loops(const geo::Rings& region, const std::vector<VarBead>& beads, const BeadSpec& spec);
+
 namespace {
 
 double dist_mm(const geo::Point& a, const geo::Point& b) {
@@ -66,6 +69,13 @@ double VarBead::mean_width() const {
 }
 
 std::vector<VarBead> axis_beads(const geo::Rings& region, const BeadSpec& spec) {
+  std::vector<VarBead> out = axis_beads_only(region, spec);
+  std::vector<VarBead> blobs = blob_loops(region, out, spec);
+  out.insert(out.end(), std::make_move_iterator(blobs.begin()), std::make_move_iterator(blobs.end()));
+  return out;
+}
+
+std::vector<VarBead> axis_beads_only(const geo::Rings& region, const BeadSpec& spec) {
   std::vector<VarBead> out;
   if (!(spec.min_width > 0) || !(spec.max_width >= spec.min_width) || !(spec.height > 0)) return out;
   const double extra = spec.height * (1 - M_PI / 4);
@@ -178,6 +188,43 @@ std::vector<VarBead> axis_beads(const geo::Rings& region, const BeadSpec& spec) 
         flush(cur, out);
       }
       i = j;
+    }
+  }
+  return out;
+}
+
+std::vector<VarBead> blob_loops(const geo::Rings& region, const std::vector<VarBead>& beads, const BeadSpec& spec) {
+  std::vector<VarBead> out;
+  ClipperLib::Clipper c;
+  c.AddPaths(region, ClipperLib::ptSubject, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  const double extra = spec.height * (1 - M_PI / 4);
+  for (const geo::Polygon& poly : geo::to_polygons(tree)) {
+    bool has = false;
+    for (const auto& b : beads) {
+      for (const auto& p : b.pts)
+        if (ClipperLib::PointInPolygon(p, poly.outer) != 0) {
+          has = true;
+          break;
+        }
+      if (has) break;
+    }
+    if (has) continue;
+    geo::Rings rings{poly.outer};
+    rings.insert(rings.end(), poly.holes.begin(), poly.holes.end());
+    double len = 0;
+    for (const auto& r : rings) len += geo::length_mm(r);
+    const double r_in = len > 0 ? 2 * area_mm2(rings) / len : 0;  // a disc's radius, a square's half side
+    if (!(r_in >= spec.min_width)) continue;  // the bead would be narrower than min_width
+    const float w = static_cast<float>(std::min(r_in + extra, spec.max_width));
+    for (geo::Ring& ring : offset(rings, -0.5 * r_in)) {
+      if (ring.size() < 3) continue;
+      VarBead b;
+      b.pts = std::move(ring);
+      b.pts.push_back(b.pts.front());
+      b.widths.assign(b.pts.size() - 1, w);
+      out.push_back(std::move(b));
     }
   }
   return out;

@@ -37,7 +37,13 @@ struct BeadSpec {
 // axis the beads are lengthened so that their plastic matches the region's up to its end. Beads
 // shorter than half their width are dropped (a dot of plastic, not a bead); no piece has zero length or a
 // non-finite width, and no width exceeds max_width.
+// A part of the region whose axis is pruned away entirely (a square, a disc: every branch runs
+// into a corner) gets a closed bead instead, half its inner radius r in from its border and r
+// wide (r = 2·area / perimeter: a disc's radius, a square's half side).
 std::vector<VarBead> axis_beads(const geo::Rings& region, const BeadSpec& spec);
+// The beads along the axis only, and the closed beads of the parts they miss.
+std::vector<VarBead> axis_beads_only(const geo::Rings& region, const BeadSpec& spec);
+std::vector<VarBead> blob_loops(const geo::Rings& region, const std::vector<VarBead>& beads, const BeadSpec& spec);
 
 // The parts of `island` no bead covers: the island minus `covered` (the loops' and fill's
 // reach), opened so that slivers narrower than `min_width` mm are dropped.

@@ -136,7 +136,7 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
       geo::Rings shrunk = offset(island, -(dist[k] + gap[k]));
       if (steiner.collapsed(shrunk, dist[k] + gap[k])) vanished = true;
       // Loop 0 keeps its corners (mitred grow-back); inner loops are rounded (they face the fill).
-      rings = k == 0 ? grow_mitred(shrunk, gap[k]) : offset(shrunk, gap[k]);
+      rings = k == 0 || variable ? grow_mitred(shrunk, gap[k]) : offset(shrunk, gap[k]);
     }
     if (rings.empty()) {
       vanished = true;
@@ -164,7 +164,9 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
     // Where even loop 0 vanished the fill keeps off the outline as if it were there: that part
     // is a thin wall, for beads along its axis.
     geo::Rings inside = offset(island, -(dist[0] + 0.5 * bead_spacing_mm(spec.widths[0], h) + 0.5 * fs - overlap));
-    out.fill_region = offset_open(difference(inside, blocked), 0, 0.5 * fs);
+    // Variable walls: parts of the fill narrower than two fill beads go to the beads too (their
+    // count follows the width; sparse fill would leave such a strip nearly empty).
+    out.fill_region = offset_open(difference(inside, blocked), 0, (variable ? 1.0 : 0.5) * fs);
   }
   out.beads = gap_beads(island, by_depth, spec.widths, out.fill_region, spec);
   return out;

@@ -174,6 +174,20 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
   };
   for (int k = 1; k <= spec.top_layers; ++k) consider(k);
   for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
+  if (spec.shell_mm > 0) {
+    // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
+    // Cheap when the neighbour covers the fill grown by the band (straight walls, the inside).
+    geo::Rings reach = offset(fill, spec.shell_mm);
+    EdgeGrid reach_grid(reach);
+    const geo::BBox2 rbox = bbox(reach);
+    auto shell = [&](int k) {
+      if (nb.layer(k).empty() || nb.covers(k, reach, reach_grid)) return;
+      geo::Rings part = difference(fill, offset(near(nb.layer(k), rbox), -spec.shell_mm));
+      solid = solid.empty() ? std::move(part) : union_of(solid, part);
+    };
+    for (int k = 1; k <= spec.top_layers; ++k) shell(k);
+    for (int k = 1; k <= spec.bottom_layers; ++k) shell(-k);
+  }
   if (spec.top_layers <= 0) open_above = false;
   if (spec.bottom_layers <= 0) open_below = false;
   // Strips narrower than half a bead (steep slopes) are left to the sparse fill.

@@ -183,6 +183,31 @@ TEST_CASE("gap fill: a tube with a 0.8 mm wall") {
   }
 }
 
+TEST_CASE("gap fill: a part whose axis is only corners (a square, a disc) gets a closed bead") {
+  // A 1.5 mm pillar with variable walls (too thin for two loops), a 0.8 mm one and a 0.8 mm disc
+  // with classic walls (too thin for one): every branch of their axis runs into a corner.
+  struct Case {
+    geo::Rings island;
+    PerimeterSpec spec;
+    double r;  // 2·area / perimeter
+  };
+  for (const Case& c : {Case{{test::rect(0, 0, 1.5, 1.5)}, variable_spec(), 0.75},
+                        Case{{test::rect(0, 0, 0.8, 0.8)}, PerimeterSpec{}, 0.4},
+                        Case{{circle(0, 0, 0.4, 64)}, PerimeterSpec{}, 0.4}}) {
+    auto per = make_perimeters(c.island, c.spec);
+    CHECK(per.loops.empty());
+    REQUIRE(per.beads.size() == 1);
+    check_beads_sane(per.beads, c.spec);
+    const auto& b = per.beads[0];
+    CHECK(b.pts.front() == b.pts.back());
+    // (of the part no loop covers, opened: about the island's)
+    for (float w : b.widths) CHECK(w == Approx(std::min(c.r + kExtra, c.spec.max_bead_width)).epsilon(0.03));
+    // Half the radius in from the border: the bead's band reaches the border and the centre.
+    const double a = area_mm2(c.island);
+    CHECK(bead_volume(per.beads) / (a * 0.2) == Approx(1.0).epsilon(0.2));
+  }
+}
+
 TEST_CASE("gap fill: degenerate islands give no bead or a sane one, never a crash") {
   for (const PerimeterSpec& spec : {PerimeterSpec{}, variable_spec()}) {
     CHECK(make_perimeters({}, spec).beads.empty());
