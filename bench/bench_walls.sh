@@ -5,6 +5,12 @@
 # classic and Arachne generators, on the settings of bench/peers; every G-code checked by gcheck.
 # One table: gcheck's verdict, coverage, band coverage, overflow, volume ratio to the model,
 # median overlap and flagged layers, and for tranche's rows the issue's goals.
+# Measured (2026-11-26, this machine; coverage / volume ratio, tranche variable vs PrusaSlicer
+# 2.5 Arachne): wall_0.3 0.999/0.992 vs 0.999/1.122; wall_0.6 0.998/0.984 vs 0.945/0.910;
+# wall_1.2 0.998/0.984 vs 0.973/0.959; wedge 0.936/0.923 vs 0.911/0.952; strokes 0.992/0.934 vs
+# 0.937/0.897; comb 0.988/0.965 vs 0.964/0.950; tube 0.999/0.999 vs 0.954/0.945; median overlap
+# 0.92-0.99, no flagged layer. Classic misses the volume goal on the 0.8 and 1.0 mm walls
+# (0.926, 0.948: one bead clamped to max_bead_width, a loop with a gap too narrow to fill).
 #   bench/bench_walls.sh [BUILD_DIR]
 #   env: MODELS="wall_0.6 wedge ..." (default: all), SLICERS="tranche_classic tranche_variable
 #        prusa_classic prusa_arachne", GCHECK=path/to/gcheck.py, OUT=dir to keep files.

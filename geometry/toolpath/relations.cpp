@@ -180,13 +180,24 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
     geo::Rings reach = offset(fill, spec.shell_mm);
     EdgeGrid reach_grid(reach);
     const geo::BBox2 rbox = bbox(reach);
-    auto shell = [&](int k) {
-      if (nb.layer(k).empty() || nb.covers(k, reach, reach_grid)) return;
-      geo::Rings part = difference(fill, offset(near(nb.layer(k), rbox), -spec.shell_mm));
+    // Eroding the intersection of the n layers is eroding each (a disc lies in all of them iff
+    // it lies in each): one offset per side instead of one per layer.
+    auto shell = [&](int sign, int n) {
+      bool covered = true;
+      for (int k = 1; k <= n && covered; ++k) covered = nb.covers(sign * k, reach, reach_grid);
+      if (covered) return;
+      const geo::Rings& all = sign > 0 ? nb.all_above(n) : nb.all_below(n);
+      if (all.empty()) return;  // a neighbour outside the print: the fill is solid already
+      // fill − erode(all) = fill ∩ dilate(the complement of all): only the complement within
+      // the fill's reach matters, a sliver on a slope, far cheaper to grow than the layer to
+      // shrink.
+      geo::Rings open = difference(reach, near(all, rbox));
+      if (open.empty()) return;
+      geo::Rings part = intersection(fill, offset(open, spec.shell_mm));
       solid = solid.empty() ? std::move(part) : union_of(solid, part);
     };
-    for (int k = 1; k <= spec.top_layers; ++k) shell(k);
-    for (int k = 1; k <= spec.bottom_layers; ++k) shell(-k);
+    if (spec.top_layers > 0) shell(1, spec.top_layers);
+    if (spec.bottom_layers > 0) shell(-1, spec.bottom_layers);
   }
   if (spec.top_layers <= 0) open_above = false;
   if (spec.bottom_layers <= 0) open_below = false;
