@@ -7,7 +7,8 @@
 #   env: MODELS="torus cone ..." (default: PrusaSlicer's shapes, the Stanford bunny as published
 #        (its base open) and with its holes capped (bench_models bunny_closed), a plate with
 #        holes), SLICERS="tranche tranche_comb prusa cura", GCHECK=path/to/gcheck.py, OUT=dir to
-#        keep files. tranche_comb (tranche with CuraEngine's retraction policy) is only counted.
+#        keep files. tranche_comb (tranche with CuraEngine's retraction policy) is only counted;
+#        tranche_classic and tranche_variable are tranche with that wall_generator.
 set -uo pipefail
 build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)

@@ -89,11 +89,14 @@ cura_defs() {
 }
 
 # After `peer_cmd SLICER MODEL OUT`, CMD holds the command line (SLICER: tranche, tranche_comb,
-# prusa, cura).
+# tranche_classic, tranche_variable, prusa, cura).
 peer_cmd() {
   local slicer=$1 model=$2 out=$3
   case $slicer in
     tranche) CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}") ;;
+    # The wall generators by name (docs/language.md, "Walls"): tranche is the default's.
+    tranche_classic | tranche_variable)
+      CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}" --set "wall_generator=${slicer#tranche_}") ;;
     # CuraEngine's combing policy (no distance limit): retract only when a travel leaves the part.
     tranche_comb)
       CMD=("$TRANCHE" slice "$model" -o "$out" --quiet "${TRANCHE_SETS[@]}" --set retract_long_travel=10000) ;;

@@ -29,7 +29,7 @@ constexpr KindStyle kKinds[] = {
     {PathKind::Bridge, "#4d80ba", "bridge"},                  {PathKind::Skirt, "#00876e", "skirt"},
     {PathKind::Ironing, "#ff8c69", "ironing"},                {PathKind::Custom, "#5ed194", "custom"},
     {PathKind::Support, "#00ff00", "support"},                {PathKind::SupportInterface, "#008000", "support interface"},
-    {PathKind::Brim, "#00876e", "brim"},
+    {PathKind::Brim, "#00876e", "brim"},                      {PathKind::GapFill, "#a0a0a0", "gap fill"},
 };
 
 void append_ring(fmt::memory_buffer& out, const geo::Ring& r, bool close) {

@@ -64,6 +64,8 @@ std::string_view type_name(PathKind k) {
       return "Support material interface";
     case PathKind::Brim:
       return "Skirt/Brim";
+    case PathKind::GapFill:
+      return "Gap fill";
   }
   return "Custom";
 }
@@ -187,10 +189,15 @@ class Formatter final : public ctx::LineSink {
       for (const auto& q : p.via) travel(q, retract);  // combing: around holes, inside the part
       travel(p.pts.front(), retract);
     }
-    type(p.kind, p.width);
+    type(p.kind, p.piece_width(0));
     double epm = toolpath::bead_area_mm2(p.width, height_) / filament_area_;
     for (size_t i = 0; i < p.piece_count(); ++i) {
       const auto& pc = p.piece(i);
+      if (!p.widths.empty()) {  // a width of its own: ;WIDTH when it changes, E per mm from it
+        const float w = p.piece_width(i);
+        type(p.kind, w);
+        epm = toolpath::bead_area_mm2(w, height_) / filament_area_;
+      }
       extrude(p.pts[i + 1], pc.speed, epm * pc.flow * p.piece_scale(i));
     }
   }

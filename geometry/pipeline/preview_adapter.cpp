@@ -248,6 +248,10 @@ class LayerBuilder {
       pp.speed.push_back(p.piece(i).speed);
       pp.flow.push_back(static_cast<float>(p.piece(i).flow * p.piece_scale(i)));
     }
+    if (!p.widths.empty()) {  // gap fill: each piece's width
+      pp.width.clear();
+      for (size_t i = 0; i < n; ++i) pp.width.push_back(p.piece_width(i));
+    }
     // Decided per piece: the path shows its first piece's decisions, and each piece its own
     // only where the pieces were decided differently.
     const plan::TraceLog* first = p.piece_traces.empty() ? nullptr : p.piece_traces[0].get();

@@ -104,6 +104,8 @@ double piece_field(const PathPlan& p, size_t i, FieldId f, const geo::Point& shi
       return geo::to_mm(p.pts[i].Y + shift.Y);
     case FieldId::PieceOverhang:
       return i < p.overhang.size() ? p.overhang[i] : 0.0;
+    case FieldId::PieceWidth:
+      return p.piece_width(i);
     default:
       return 0.0;
   }
@@ -112,7 +114,7 @@ double piece_field(const PathPlan& p, size_t i, FieldId f, const geo::Point& shi
 
 void set_piece_fields(ctx::Context& c, const PathPlan& p, size_t i, const geo::Point& shift) {
   for (FieldId f : {FieldId::PieceIndex, FieldId::PieceLength, FieldId::PieceBorder, FieldId::PieceX,
-                    FieldId::PieceY, FieldId::PieceOverhang})
+                    FieldId::PieceY, FieldId::PieceOverhang, FieldId::PieceWidth})
     c.set(f, piece_field(p, i, f, shift));
 }
 

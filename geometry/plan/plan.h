@@ -63,7 +63,10 @@ struct PathPlan {
   int cell = -1;       // index of the cell it fills within the island; -1 otherwise
   int index = 0;       // order within the island
   bool closed = false;
-  float width = 0.45f;      // mm, decided at path planning
+  float width = 0.45f;      // mm, decided at path planning (gap fill: the mean of `widths`)
+  // mm, per piece, for a path whose width varies (gap fill, variable-width walls); empty when
+  // every piece is `width` wide. E per mm follows each piece's width.
+  std::vector<float> widths;
   float flow_scale = 1.0f;  // geometric correction (solid pitch fitted to its cell)
   // Geometric flow of the pieces that run along a real border: a solid zig-zag's connector
   // there lies half over the ends of the lines it joins, so it lays half a bead.
@@ -85,6 +88,7 @@ struct PathPlan {
 
   size_t piece_count() const { return pts.size() < 2 ? 0 : pts.size() - 1; }
   const PieceProps& piece(size_t i) const { return pieces.size() == 1 ? pieces[0] : pieces[i]; }
+  float piece_width(size_t i) const { return i < widths.size() ? widths[i] : width; }
   // flow_scale, times border_flow for a piece along a real border.
   double piece_scale(size_t i) const {
     return i < border.size() && border[i] == schema::Border::Real ? flow_scale * border_flow : flow_scale;

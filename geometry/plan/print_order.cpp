@@ -132,7 +132,7 @@ class IslandOrder {
     seams[bk - i] = toolpath::insert_vertex(loops_[bk].pts, at);
     PathPlan& f = out_.back();
     double limit = 1.5 * std::max(f.width, loops_[bk].width) * geo::kUnitsPerMm;
-    if (bd > 0 && bd <= limit * limit && !f.pts.empty() && f.pts.back() == pos_) {
+    if (bd > 0 && bd <= limit * limit && !f.pts.empty() && f.pts.back() == pos_ && f.widths.empty()) {
       f.pts.push_back(loops_[bk].pts[seams[bk - i]]);
       f.border.push_back(Border::Artificial);
     }
@@ -199,6 +199,7 @@ class IslandOrder {
       if (v.reversed) {
         std::reverse(p.pts.begin(), p.pts.end());
         std::reverse(p.border.begin(), p.border.end());
+        std::reverse(p.widths.begin(), p.widths.end());
       }
       out_.push_back(std::move(p));
     }
@@ -210,6 +211,7 @@ class IslandOrder {
       if (!joinable(prev, p, a, p.pts.front())) continue;
       p.pts.insert(p.pts.begin(), a);
       p.border.insert(p.border.begin(), Border::Artificial);
+      if (!p.widths.empty()) p.widths.insert(p.widths.begin(), p.width);
     }
     if (out_.size() > first_fill && !out_.back().pts.empty()) pos_ = out_.back().pts.back();
   }

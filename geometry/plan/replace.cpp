@@ -97,6 +97,7 @@ Status PathReplace::reverse() {
   std::reverse(p_.pts.begin(), p_.pts.end());
   std::reverse(p_.border.begin(), p_.border.end());
   std::reverse(p_.overhang.begin(), p_.overhang.end());
+  std::reverse(p_.widths.begin(), p_.widths.end());
   altered();
   return ok_status();
 }

@@ -58,6 +58,7 @@ struct TimeVisitor {
     for (size_t i = 0; i < p.piece_count(); ++i) {
       const auto& pp = p.piece(i);
       double len = std::sqrt(dist2(p.pts[i], p.pts[i + 1])) * geo::kMmPerUnit;
+      if (!p.widths.empty()) area = toolpath::bead_area_mm2(p.piece_width(i), height);
       extrude(p.pts[i + 1], pp.speed, len * area * pp.flow * p.piece_scale(i));
     }
   }

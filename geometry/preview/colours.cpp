@@ -34,6 +34,8 @@ Rgb kind_colour(PathKind k) {
       return {0x00, 0x80, 0x00};
     case PathKind::Brim:
       return {0x00, 0x87, 0x6e};
+    case PathKind::GapFill:
+      return {0xa0, 0xa0, 0xa0};  // grey: PrusaSlicer's white would vanish on the white page
   }
   return {0x80, 0x80, 0x80};
 }
@@ -66,6 +68,8 @@ std::string_view kind_label(PathKind k) {
       return "Support material interface";
     case PathKind::Brim:
       return "Skirt/Brim";
+    case PathKind::GapFill:
+      return "Gap fill";
   }
   return "Custom";
 }

@@ -16,7 +16,9 @@ struct Rgb {
   uint8_t r = 0, g = 0, b = 0;
 };
 
-inline constexpr int kPathKindCount = 10;  // schema::PathKind values
+// Every schema::PathKind value (the viewer looks a path's kind up by its value: a kind left out
+// had no colour or label, support and brim included).
+inline constexpr int kPathKindCount = static_cast<int>(schema::PathKind::GapFill) + 1;
 Rgb kind_colour(schema::PathKind k);
 // The G-code's ;TYPE: name of a kind ("External perimeter"), as PrusaSlicer labels it.
 std::string_view kind_label(schema::PathKind k);

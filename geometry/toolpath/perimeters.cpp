@@ -15,8 +15,13 @@ namespace {
 // which detects thin parts without another polygon operation.
 struct Steiner {
   double area = 0, perimeter = 0, s = 0;
+  // A convex corner sharper than 60°: the loops' corners stop short of its tip (a wedge's by
+  // millimetres), which gap fill must reach even when no part collapses.
+  bool sharp = false;
+  int outlines = 0;
   explicit Steiner(const geo::Rings& rings) {
     for (const auto& ring : rings) {
+      outlines += ClipperLib::Orientation(ring) ? 1 : 0;
       area += geo::area_mm2(ring);
       perimeter += geo::length_mm(ring);
       size_t n = ring.size();
@@ -27,39 +32,58 @@ struct Steiner {
         double ux = double(b.X - a.X), uy = double(b.Y - a.Y), vx = double(c.X - b.X), vy = double(c.Y - b.Y);
         double phi = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);  // > 0: convex (material on the left)
         s += phi > 0 ? std::tan(std::min(phi, 3.0) / 2) : phi / 2;
+        if (phi > M_PI * 2 / 3) sharp = true;
       }
     }
   }
   double eroded_area(double d) const { return area - perimeter * d + s * d * d; }
-  // True when erode(X, d) lost parts: its area exceeds the prediction beyond rounding noise.
+  // True when erode(X, d) lost parts: its area exceeds the prediction beyond rounding noise, or
+  // it has fewer outlines (a part eroded past its own size, where the quadratic formula turns
+  // positive again: a 0.5 × 2 mm bar shrunk by 1 mm is predicted (0.5 − 2)(2 − 2) + ... ≥ 0).
   bool collapsed(const geo::Rings& eroded, double d) const {
+    int left = 0;
+    for (const auto& r : eroded) left += ClipperLib::Orientation(r) ? 1 : 0;
+    if (left < outlines) return true;
     return area_mm2(eroded) - eroded_area(d) > std::max(0.05, 0.002 * perimeter);
   }
 };
 }  // namespace
 
 namespace {
-// An island thinner than one bead: a single loop around its core (the island shrunk by a
-// quarter bead, or the island itself when that leaves nothing), its flow scaled so that the
-// plastic laid equals the island's area times the layer height. Parts narrower than the
-// minimum feature (a cone's tip, an ear's last layer) are dropped: a loop of nozzle-wide beads
-// around them would put most of its plastic outside the part.
-Perimeters& thin_wall(const geo::Rings& whole, const PerimeterSpec& spec, Perimeters& out) {
-  double w = spec.widths.front();
-  geo::Rings island = spec.min_feature > 0 ? offset_open(whole, 0, 0.5 * spec.min_feature) : whole;
-  if (island.empty()) return out;
-  geo::Rings core = offset(island, -0.25 * w);
-  if (core.empty()) core = island;
-  double len = 0;
-  for (const auto& r : core) len += geo::length_mm(r);
-  double area = area_mm2(island);
-  if (len <= 0 || area <= 0) return out;
-  double scale = std::clamp(area / (len * bead_spacing_mm(w, spec.height)), 0.05, 1.0);
-  for (auto& r : core) {
-    bool hole = !ClipperLib::Orientation(r);
-    out.loops.push_back({std::move(r), 0, hole, scale});
-  }
+// Grows a region shrunk by `d + gap` (round joins) back by `gap` with mitred joins: parts where
+// the centreline's two sides would come closer than 2·gap have vanished, and the convex corners
+// the shrink kept sharp stay sharp (a round grow-back would cut them and leave the corner
+// unprinted).
+geo::Rings grow_mitred(const geo::Rings& shrunk, double gap) {
+  if (shrunk.empty()) return shrunk;
+  // Miter limit 2: corners sharper than 60° are squared off 2·gap from the shrunk tip, where the
+  // loop's sides are still apart (gap fill reaches the tip).
+  ClipperLib::ClipperOffset co(2.0, 5000);
+  co.AddPaths(shrunk, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+  geo::Rings out;
+  co.Execute(out, gap * geo::kUnitsPerMm);
   return out;
+}
+
+// Beads along the axis of what neither the loops (`centrelines`, each with its width) nor the fill
+// region covers.
+std::vector<VarBead> gap_beads(const geo::Rings& island, const std::vector<geo::Rings>& centrelines,
+                               const std::vector<double>& widths, const geo::Rings& fill_region,
+                               const PerimeterSpec& spec) {
+  const double h = spec.height;
+  geo::Rings covered;
+  for (size_t k = 0; k < centrelines.size(); ++k)
+    if (!centrelines[k].empty())
+      covered = union_of(covered, buffer_loops(centrelines[k], 0.5 * bead_spacing_mm(widths[k], h)));
+  if (!fill_region.empty()) covered = union_of(covered, offset(fill_region, 0.5 * bead_spacing_mm(spec.fill_width, h)));
+  geo::Rings gaps = uncovered(island, covered, spec.min_bead_width);
+  if (gaps.empty()) return {};
+  BeadSpec bs;
+  bs.min_width = spec.min_bead_width;
+  bs.max_width = spec.max_bead_width;
+  bs.height = h;
+  bs.max_beads = spec.mode == WallMode::Variable ? 8 : 1;
+  return axis_beads(gaps, bs);
 }
 }  // namespace
 
@@ -70,6 +94,7 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
   const double fw = spec.fill_width;
   const double fs = bead_spacing_mm(fw, h);
   const double overlap = spec.infill_overlap * fw;
+  const bool variable = spec.mode == WallMode::Variable;
   if (count == 0) {
     // No loop at all: the fill's own border beads take the outer perimeter's place.
     out.fill_region = offset(island, -0.5 * fw);
@@ -77,33 +102,42 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
   }
   // Centreline distances from the outline: d_0 = w_0/2, d_k = d_{k-1} + spacing.
   std::vector<double> dist(count), gap(count);
-  for (size_t k = 0; k < count; ++k) {
+  for (size_t k = 0; k < count; ++k)
     dist[k] =
         k == 0 ? 0.5 * spec.widths[0] : dist[k - 1] + bead_spacing_mm(spec.widths[k - 1], spec.widths[k], h);
-    gap[k] = k == 0 ? 0.0 : 0.3 * bead_spacing_mm(spec.widths[k - 1], spec.widths[k], h);
+  // How far each loop is opened (see perimeters.h): classic, loop 0 by half a spacing (its sides
+  // stay a spacing apart), the others by 0.3·spacing; variable, every loop so that it survives
+  // only where the innermost one has a spacing between its sides.
+  const double last_s = bead_spacing_mm(spec.widths.back(), h);
+  for (size_t k = 0; k < count; ++k) {
+    if (variable)
+      gap[k] = dist.back() - dist[k] + 0.5 * last_s;
+    else
+      gap[k] = k == 0 ? 0.5 * bead_spacing_mm(spec.widths[0], h)
+                      : 0.3 * bead_spacing_mm(spec.widths[k - 1], spec.widths[k], h);
   }
   // Fill centrelines stay (half a loop bead + half a fill bead − overlap) from the last loop.
-  const double keep_off = 0.5 * bead_spacing_mm(spec.widths.back(), h) + 0.5 * fs - overlap;
+  const double keep_off = 0.5 * last_s + 0.5 * fs - overlap;
   const Steiner steiner(island);
   // Fast path: when even the fill region's offset loses no part of the island, every loop is
   // whole and none needs opening: one offset per loop plus one for the fill.
   geo::Rings fill = offset(island, -(dist.back() + keep_off));
-  bool thin = steiner.collapsed(fill, dist.back() + keep_off);
+  bool thin = steiner.collapsed(fill, dist.back() + keep_off) || steiner.sharp;
   bool vanished = false;  // a loop that fits only in part of the island leaves a gap
   geo::Rings centrelines;
+  std::vector<geo::Rings> by_depth(count);
   for (size_t k = 0; k < count; ++k) {
     geo::Rings rings;
-    if (k == 0 || !thin) {
+    if (!thin) {
       rings = offset(island, -dist[k]);
     } else {
-      // Opened: shrunk by 0.3·spacing more and grown back, so that where a part is too thin
-      // for the loop's two sides to stay 0.6·spacing apart, the loop is dropped instead of
-      // printed as overlapping beads.
+      // Opened: where a part is too thin for the loop's two sides to stay 2·gap apart, the loop
+      // is dropped instead of printed as overlapping beads.
       geo::Rings shrunk = offset(island, -(dist[k] + gap[k]));
       if (steiner.collapsed(shrunk, dist[k] + gap[k])) vanished = true;
-      rings = offset(shrunk, gap[k]);
+      // Loop 0 keeps its corners (mitred grow-back); inner loops are rounded (they face the fill).
+      rings = k == 0 || variable ? grow_mitred(shrunk, gap[k]) : offset(shrunk, gap[k]);
     }
-    if (rings.empty() && k == 0) return thin_wall(island, spec, out);
     if (rings.empty()) {
       vanished = true;
       break;
@@ -111,18 +145,30 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
     for (auto& r : rings) {
       bool hole = !ClipperLib::Orientation(r);
       centrelines.push_back(r);
+      by_depth[k].push_back(r);
       out.loops.push_back({std::move(r), static_cast<int>(k), hole});
     }
   }
-  if (!vanished) {
+  if (!thin) {
     out.fill_region = std::move(fill);
     return out;
   }
-  // Some loop vanished in thin parts: fill what no bead covers, gaps included, dropping
-  // slivers narrower than a fraction of a bead.
-  double last_w = spec.widths[static_cast<size_t>(out.loops.back().depth)];
-  geo::Rings blocked = buffer_loops(centrelines, 0.5 * bead_spacing_mm(last_w, h) + 0.5 * fs - overlap);
-  out.fill_region = offset_open(difference(island, blocked), 0, 0.25 * fs);
+  // Some loop vanished in thin parts: fill what no bead covers, gaps wider than two fill beads
+  // included; the narrower ones (and the parts too thin for any loop, and sharp corners' tips)
+  // get beads along their axis.
+  if (!vanished) {
+    out.fill_region = std::move(fill);
+  } else if (!out.loops.empty()) {
+    double last_w = spec.widths[static_cast<size_t>(out.loops.back().depth)];
+    geo::Rings blocked = buffer_loops(centrelines, 0.5 * bead_spacing_mm(last_w, h) + 0.5 * fs - overlap);
+    // Where even loop 0 vanished the fill keeps off the outline as if it were there: that part
+    // is a thin wall, for beads along its axis.
+    geo::Rings inside = offset(island, -(dist[0] + 0.5 * bead_spacing_mm(spec.widths[0], h) + 0.5 * fs - overlap));
+    // Variable walls: parts of the fill narrower than two fill beads go to the beads too (their
+    // count follows the width; sparse fill would leave such a strip nearly empty).
+    out.fill_region = offset_open(difference(inside, blocked), 0, (variable ? 1.0 : 0.5) * fs);
+  }
+  out.beads = gap_beads(island, by_depth, spec.widths, out.fill_region, spec);
   return out;
 }
 

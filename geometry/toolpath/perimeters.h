@@ -7,11 +7,25 @@
 // overshooting them as a miter would), and d_k = d_{k-1} + spacing. Loops k ≥ 1 are opened
 // (shrunk then grown by 0.3·spacing) so that where a part is too thin for them they vanish
 // instead of laying two overlapping beads.
+//
+// Where a part is too thin for a loop, or a loop vanished and left a gap narrower than a fill
+// bead, the uncovered part gets beads of varying width along its medial axis (gap_fill.h):
+// - classic: loop 0 is opened too (its two sides must stay one bead spacing apart, so a 0.6 mm
+//   wall gets no loop overlapping itself) with mitred grow-back, which keeps its corners sharp;
+//   each uncovered part gets one bead along its axis, as wide as the part (up to
+//   max_bead_width).
+// - variable: every loop is opened so that it survives only where all the loops fit (a part at
+//   least 2·d_last + spacing thick); the thinner parts get n beads side by side along their axis,
+//   n = ceil(local width / max_bead_width), each 1/n of the local width, so no bead overlaps
+//   another. Unlike Arachne (SkeletalTrapezoidation), the loops of the wide parts are not bent
+//   into the thin ones and a change in bead count is a cut (the beads of either side end there)
+//   rather than a smooth transition; the bead count is chosen per axis piece, not per region.
 #pragma once
 
 #include <vector>
 
 #include "geometry/core/geom.h"
+#include "geometry/toolpath/gap_fill.h"
 
 namespace tranche::toolpath {
 
@@ -19,20 +33,18 @@ struct Loop {
   geo::Ring ring;  // centreline; counter-clockwise around material, clockwise around holes
   int depth = 0;   // 0 = outer perimeter
   bool hole = false;
-  // Below 1 for a thin wall: an island too thin for any loop is printed as one loop around
-  // its core with the flow scaled so that the plastic matches the island's area (its parts
-  // narrower than PerimeterSpec::min_feature left out).
-  double flow_scale = 1.0;
 };
+
+enum class WallMode { Classic, Variable };
 
 struct PerimeterSpec {
   std::vector<double> widths = {0.45, 0.45};  // mm, one per loop, outermost first
   double fill_width = 0.45;                   // mm, width of the infill that meets the innermost loop
   double height = 0.2;                        // mm, layer height
   double infill_overlap = 0.15;               // ratio of fill_width the fill region reaches into the loops
-  // mm: parts of a thin island narrower than this are not printed (a nozzle cannot lay a bead
-  // that thin; PrusaSlicer's thin walls use nozzle / 3 too).
-  double min_feature = 0.4 / 3;
+  WallMode mode = WallMode::Classic;
+  double min_bead_width = 0.1;  // mm: narrower parts of gaps and thin walls are not printed
+  double max_bead_width = 0.8;  // mm: widest bead along an axis
 };
 
 struct Perimeters {
@@ -41,6 +53,8 @@ struct Perimeters {
   // spacing (less the overlap) away from the beads. It includes gaps a vanished loop left
   // when they are wide enough for a fill bead.
   geo::Rings fill_region;
+  // Beads of varying width along the axis of what no loop or fill covers: gap fill, thin walls.
+  std::vector<VarBead> beads;
 };
 
 // `island`: the island's outline and holes (non-zero fill). Widths and heights in mm.

@@ -174,6 +174,31 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
   };
   for (int k = 1; k <= spec.top_layers; ++k) consider(k);
   for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
+  if (spec.shell_mm > 0) {
+    // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
+    // Cheap when the neighbour covers the fill grown by the band (straight walls, the inside).
+    geo::Rings reach = offset(fill, spec.shell_mm);
+    EdgeGrid reach_grid(reach);
+    const geo::BBox2 rbox = bbox(reach);
+    // Eroding the intersection of the n layers is eroding each (a disc lies in all of them iff
+    // it lies in each): one offset per side instead of one per layer.
+    auto shell = [&](int sign, int n) {
+      bool covered = true;
+      for (int k = 1; k <= n && covered; ++k) covered = nb.covers(sign * k, reach, reach_grid);
+      if (covered) return;
+      const geo::Rings& all = sign > 0 ? nb.all_above(n) : nb.all_below(n);
+      if (all.empty()) return;  // a neighbour outside the print: the fill is solid already
+      // fill − erode(all) = fill ∩ dilate(the complement of all): only the complement within
+      // the fill's reach matters, a sliver on a slope, far cheaper to grow than the layer to
+      // shrink.
+      geo::Rings open = difference(reach, near(all, rbox));
+      if (open.empty()) return;
+      geo::Rings part = intersection(fill, offset(open, spec.shell_mm));
+      solid = solid.empty() ? std::move(part) : union_of(solid, part);
+    };
+    if (spec.top_layers > 0) shell(1, spec.top_layers);
+    if (spec.bottom_layers > 0) shell(-1, spec.bottom_layers);
+  }
   if (spec.top_layers <= 0) open_above = false;
   if (spec.bottom_layers <= 0) open_below = false;
   // Strips narrower than half a bead (steep slopes) are left to the sparse fill.

@@ -74,6 +74,11 @@ struct SolidSpec {
   int top_layers = 3, bottom_layers = 3;
   double density = 0.2;  // sparse infill density (≥ 1: everything solid)
   double width = 0.45;   // mm, fill bead width: slivers narrower than half of it are dropped
+  // Ensure vertical shell thickness (vertical_shell): > 0, a depth (mm); the fill within that
+  // depth of the border of a layer within top_layers above or bottom_layers below is solid too,
+  // as if those layers ended that much further in, so that a gentle slope keeps a shell about as
+  // thick as the perimeters (the fill that supports, or rests on, a neighbour's perimeters).
+  double shell_mm = 0;
 };
 
 // Splits `fill` (one island's fill region) into bridge, bottom, top, internal solid and sparse

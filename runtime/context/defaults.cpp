@@ -26,6 +26,7 @@ constexpr BuiltinRule kRules[] = {
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Support), 50},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::SupportInterface), 40},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Brim), 30},
+    {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::GapFill), 30},
     // rule "first layer" when layer.index == 0 { speed = 20 mm/s; fan = 0% }
     {PropId::Speed, FieldId::LayerIndex, T::Equals, 0, 20},
     {PropId::Fan, FieldId::LayerIndex, T::Equals, 0, 0},

@@ -85,7 +85,7 @@ inline constexpr int kPropCount = static_cast<int>(PropId::Count_);
 // Enum values used by the slicer (the value of a path.kind field is static_cast<double>(PathKind)).
 enum class PathKind : uint8_t {
   OuterPerimeter, InnerPerimeter, Infill, SolidInfill, TopSolid, BottomSolid, Bridge, Skirt,
-  Ironing, Custom, Support, SupportInterface, Brim
+  Ironing, Custom, Support, SupportInterface, Brim, GapFill
 };
 enum class Border : uint8_t { None, Real, Artificial };
 enum class Flavor : uint8_t { Marlin, Klipper, RepRapFirmware };
@@ -95,6 +95,7 @@ enum class PrintOrder : uint8_t { Layers, Sequential };
 enum class Thumbnails : uint8_t { None, Png, Qoi };
 enum class Support : uint8_t { None, Normal, Tree };
 enum class SupportPattern : uint8_t { Lines, Grid };
+enum class WallGenerator : uint8_t { Classic, Variable };
 
 struct FieldInfo {
   FieldId id;

@@ -447,3 +447,30 @@ rule "wipe and lift away" when path.kind == outer_perimeter {
   }
   CHECK(seen == 5);  // five layers
 }
+
+SCENARIO("rules: a 0.6 mm wall is one gap-fill bead of its plastic, and piece.width slows the narrow ones") {
+  test::TempDir dir("rules-walls");
+  // Two walls 2 mm tall, 10 mm apart: 0.6 mm and 0.25 mm thick (too thin for a loop of 0.45 mm
+  // beads: each is one bead along its middle, as wide as the wall).
+  geo::Mesh m = geo::box({20, 0.6, 2});
+  geo::append(m, geo::translated(geo::box({20, 0.25, 2}), {0, 10, 0}));
+  auto g = slice(dir, "walls", m, R"(
+rule "narrow beads slow" when piece.width < 0.3 mm { speed = 15 mm/s }
+)",
+                 {{"min_layer_time", "0"}});
+  CHECK(g.contains(";TYPE:Gap fill"));
+  std::set<double> thick_feeds, thin_feeds;
+  for (const auto& mv : g.moves) {
+    if (!extrudes(mv)) continue;
+    CHECK(mv.type == "Gap fill");  // no loop overlapping itself
+    if (mv.layer == 0) continue;   // first layer: 20 mm/s for everything
+    (mv.y < 100 ? thick_feeds : thin_feeds).insert(mv.f);
+  }
+  CHECK(thick_feeds == std::set<double>{1800});  // gap fill's default 30 mm/s
+  CHECK(thin_feeds == std::set<double>{900});
+  // Plastic: the walls' volume less their round ends (the beads stop half a width short of the
+  // wall's ends and go on (1 − π/4)·w/2 beyond, so that their footprint matches the wall).
+  const double filament_mm2 = std::numbers::pi * 1.75 * 1.75 / 4;
+  const double model = (20 * 0.6 + 20 * 0.25) * 2;
+  CHECK(g.filament() * filament_mm2 / model == doctest::Approx(1.0).epsilon(0.05));
+}

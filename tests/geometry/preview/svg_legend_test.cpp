@@ -35,7 +35,9 @@ TEST_CASE("svg legend: one swatch and label per class, well-formed, sized for th
 
 TEST_CASE("svg legend: the path kinds in the preview's colours") {
   const auto kinds = kind_legend_entries();
-  REQUIRE(kinds.size() == 10);
+  REQUIRE(kinds.size() == 14);  // every path.kind: support, brim and gap fill included
+  CHECK(kinds[13].css_class == "kind-gap_fill");
+  CHECK(kinds[13].label == "Gap fill");
   CHECK(kinds[0].css_class == "kind-outer_perimeter");
   CHECK(kinds[0].colour == "#ff7d38");
   CHECK(kinds[0].label == "External perimeter");

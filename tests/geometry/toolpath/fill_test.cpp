@@ -191,35 +191,32 @@ TEST_CASE("zig-zag: any angle, the lines keep the requested direction and pitch"
   for (size_t i = 1; i < offsets.size(); ++i) CHECK(offsets[i] - offsets[i - 1] == Approx(0.8).epsilon(1e-3));
 }
 
-TEST_CASE("perimeters: an island thinner than a bead is a thin wall with its flow scaled to its area") {
+TEST_CASE("perimeters: an island thinner than a bead gets no loop: a bead along its axis (gap_fill_test.cpp)") {
   geo::Rings sliver{test::rect(0, 0, 10, 0.3)};
   auto per = make_perimeters(sliver, PerimeterSpec{});
-  REQUIRE(per.loops.size() == 1);
-  const auto& l = per.loops[0];
-  CHECK(l.flow_scale < 1.0);
-  // Plastic laid = loop length × bead spacing × scale = the island's area.
-  double s = 0.45 - 0.2 * (1 - M_PI / 4);
-  CHECK(geo::length_mm(l.ring) * s * l.flow_scale == Approx(3.0).epsilon(0.01));
+  CHECK(per.loops.empty());
   CHECK(per.fill_region.empty());
+  CHECK(per.beads.size() == 1);
 }
 
-TEST_CASE("perimeters: a thin island's parts narrower than the minimum feature are not printed") {
-  // A cone's tip or an ear's last layer: a speck 0.1 mm across gets no loop at all (a loop of
-  // 0.45 mm beads around it would lay its plastic outside the part).
+TEST_CASE("perimeters: a thin island's parts narrower than min_bead_width are not printed") {
+  // A cone's tip or an ear's last layer: a speck 0.05 mm across gets nothing (a bead around or
+  // along it would lay its plastic outside the part).
   PerimeterSpec spec;
-  spec.min_feature = 0.4 / 3;
-  CHECK(make_perimeters(geo::Rings{test::rect(0, 0, 0.1, 0.1)}, spec).loops.empty());
-  CHECK(make_perimeters(geo::Rings{test::rect(0, 0, 10, 0.1)}, spec).loops.empty());
-  // A 0.3 mm sliver with a 0.1 mm whisker: the sliver is kept, the whisker's plastic is not counted.
-  geo::Ring t{geo::to_point(0, 0),      geo::to_point(10, 0),   geo::to_point(10, 0.3),
-              geo::to_point(5.05, 0.3), geo::to_point(5.05, 3), geo::to_point(4.95, 3),
-              geo::to_point(4.95, 0.3), geo::to_point(0, 0.3)};
+  spec.min_bead_width = 0.1;
+  auto speck = make_perimeters(geo::Rings{test::rect(0, 0, 0.05, 0.05)}, spec);
+  CHECK((speck.loops.empty() && speck.beads.empty()));
+  auto needle = make_perimeters(geo::Rings{test::rect(0, 0, 10, 0.05)}, spec);
+  CHECK((needle.loops.empty() && needle.beads.empty()));
+  // A 0.3 mm sliver with a 0.05 mm whisker: the sliver gets its bead, the whisker nothing.
+  geo::Ring t{geo::to_point(0, 0),       geo::to_point(10, 0),    geo::to_point(10, 0.3),
+              geo::to_point(5.025, 0.3), geo::to_point(5.025, 3), geo::to_point(4.975, 3),
+              geo::to_point(4.975, 0.3), geo::to_point(0, 0.3)};
   auto per = make_perimeters(geo::Rings{t}, spec);
-  REQUIRE(per.loops.size() == 1);
-  const auto& l = per.loops[0];
-  double s = 0.45 - 0.2 * (1 - M_PI / 4);
-  CHECK(geo::length_mm(l.ring) * s * l.flow_scale == doctest::Approx(3.0).epsilon(0.02));
-  for (const auto& p : l.ring) CHECK(geo::to_mm(p.Y) < 0.31);
+  CHECK(per.loops.empty());
+  REQUIRE(!per.beads.empty());
+  for (const auto& b : per.beads)
+    for (const auto& p : b.pts) CHECK(geo::to_mm(p.Y) < 0.31);
 }
 
 TEST_CASE("zig-zag: runs split by a notch are linked along the border when the walk is short") {

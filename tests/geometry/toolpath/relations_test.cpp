@@ -94,3 +94,32 @@ TEST_CASE("relations: fraction of an island supported by the layer below") {
   CHECK(fraction_on(isl, below) == Approx(0.5));
   CHECK(fraction_on(isl, {}) == 0);
 }
+
+TEST_CASE("relations: vertical shell: the fill under a gentle slope's shells is solid, a straight wall's is not") {
+  // A pyramid of squares shrinking by 0.3 mm a side per 0.2 mm layer (a 34° slope); layer 10's
+  // fill region lies 1 mm inside its square (3 mm from the first layer's side).
+  std::vector<geo::Layer> layers = test::stack(30, 0.2, geo::Polygon{test::rect(0, 0, 20, 20), {}});
+  for (int i = 0; i < 30; ++i) {
+    const double d = 0.3 * i;
+    layers[static_cast<size_t>(i)].islands[0].shape.outer = test::rect(d, d, 20 - d, 20 - d);
+  }
+  geo::Rings fill{test::rect(4, 4, 16, 16)};
+  SolidSpec spec;
+  Neighbours nb(layers, 10);
+  const auto plain = split_fill(fill, nb, spec);
+  spec.shell_mm = 0.5;
+  const auto shell = split_fill(fill, nb, spec);
+  // Without: the next three layers (3.3, 3.6 and 3.9 mm from the side) cover the fill: all
+  // sparse. With: the fill within 0.5 mm of layer 13's side (4.4 mm) is solid, a ring 0.4 mm
+  // wide, grown by a bead and a quarter into the sparse fill.
+  CHECK(area_of(plain, PathKind::SolidInfill) == 0);
+  CHECK(area_of(shell, PathKind::SolidInfill) > 4 * 12 * 0.4);
+  CHECK(area_of(shell, PathKind::Infill) < area_of(plain, PathKind::Infill));
+  // A straight wall: the neighbours are the same square, the fill 1 mm in: nothing changes.
+  auto straight = test::stack(30, 0.2, geo::Polygon{test::rect(0, 0, 20, 20), {}});
+  Neighbours nb2(straight, 10);
+  const auto s_plain = split_fill(geo::Rings{test::rect(1, 1, 19, 19)}, nb2, SolidSpec{});
+  const auto s_shell = split_fill(geo::Rings{test::rect(1, 1, 19, 19)}, nb2, spec);
+  CHECK(area_of(s_shell, PathKind::SolidInfill) == 0);
+  CHECK(area_of(s_shell, PathKind::Infill) == Approx(area_of(s_plain, PathKind::Infill)));
+}

@@ -44,7 +44,7 @@ TEST_CASE("schema: C++ enums agree with the enum tables") {
   CHECK(find_enum_value(EnumType::PathKind, "outer_perimeter") == static_cast<int>(PathKind::OuterPerimeter));
   CHECK(find_enum_value(EnumType::PathKind, "custom") == static_cast<int>(PathKind::Custom));
   CHECK(find_enum_value(EnumType::PathKind, "support_interface") == static_cast<int>(PathKind::SupportInterface));
-  CHECK(enum_info(EnumType::PathKind).values.size() == static_cast<size_t>(PathKind::Brim) + 1);
+  CHECK(enum_info(EnumType::PathKind).values.size() == static_cast<size_t>(PathKind::GapFill) + 1);
   CHECK(find_enum_value(EnumType::Support, "normal") == static_cast<int>(Support::Normal));
   CHECK(find_enum_value(EnumType::SupportPattern, "grid") == static_cast<int>(SupportPattern::Grid));
   CHECK(find_enum_value(EnumType::Border, "artificial") == static_cast<int>(Border::Artificial));
