@@ -9,7 +9,8 @@ The mesh is placed with its lowest point at z = 0 (as every slicer does); the la
 G-code's `;Z:` values (tranche's and PrusaSlicer's), or a plan's z tops, one per line.
 A layer [z0, z1] of height h leaves on a facet whose unit normal has vertical component n_z the
 stair-step (cusp) h·|n_z|, measured across the surface; a horizontal facet strictly inside a
-layer leaves its distance to the nearer layer boundary. The first layer is left out (every
+layer leaves its distance to the nearer layer boundary. A facet reaching less than 1 µm into a
+layer (the G-code's z resolution) does not count in it. The first layer is left out (every
 slicer prints first_layer_height there). Reported: the layer count, the largest cusp of any
 layer, and the mean cusp over the surface (each facet's cusp in each layer it crosses, weighted
 by its area in that layer).
@@ -29,6 +30,8 @@ import sys
 import numpy as np
 
 EPS = 1e-6
+# G-code z values carry 3 decimals: a facet within 1 µm of a layer boundary only touches it.
+ZTOL = 1e-3
 
 
 def read_stl(path):
@@ -76,7 +79,7 @@ def cusps(f, tops):
     worst, num, den = 0.0, 0.0, 0.0
     for z0, z1 in zip(tops, tops[1:]):
         h = z1 - z0
-        cross = (f.zmax > z0 + EPS) & (f.zmin < z1 - EPS)
+        cross = (f.zmax > z0 + ZTOL) & (f.zmin < z1 - ZTOL)
         slope = cross & ~f.flat
         if slope.any():
             c = h * f.nz[slope]
