@@ -3,6 +3,7 @@
 
 usage: adaptive_cusp.py row NAME SLICER MODEL.stl FILE.gcode GCHECK_VERDICT >> rows.tsv
        adaptive_cusp.py prusa-plan MODEL.stl QUALITY MIN MAX LAYER_H FIRST_H > plan.txt
+       adaptive_cusp.py prusa-3mf IN.3mf plan.txt OUT.3mf
        adaptive_cusp.py table ROWS.tsv
 
 The mesh is placed with its lowest point at z = 0 (as every slicer does); the layers are the
@@ -21,7 +22,10 @@ lerp(min, layer_height, 2q) below q = 0.5 and lerp(max, layer_height, 2(1 - q)) 
 PrusaSlicer's q where 0 is finest; a facet allows min(dev / 0.184, 1.44·dev·sqrt(tan of its slope
 from horizontal)); facets already crossing the layer's bottom, then those starting inside the
 layer, limit it; a horizontal facet ends the layer on it), because prusa-slicer's command line
-cannot turn adaptive layers on (it is a button in its GUI).
+cannot turn adaptive layers on (it is a button in its GUI). `prusa-3mf` writes that plan into a
+3MF (made by `prusa-slicer --export-3mf`) as the object's layer height profile, the file its GUI
+saves (Metadata/Slic3r_PE_layer_heights_profile.txt: z, height pairs, the last at the object's
+top), so that prusa-slicer's command line slices with those heights.
 """
 import math
 import struct
@@ -134,6 +138,22 @@ def prusa_plan(f, quality, hmin, hmax, hmid, first):
     return tops
 
 
+def prusa_3mf(src, plan, dst):
+    import zipfile
+    tops = [float(x) for x in open(plan) if x.strip()]
+    pairs, z = [], 0.0
+    for t in tops:
+        pairs += [z, t - z]
+        z = t
+    pairs += [tops[-1], pairs[-1]]  # PrusaSlicer drops a profile whose last z is not the top
+    profile = 'object_id=1|' + ';'.join(f'{v:.6f}' for v in pairs) + '\n'
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, 'w', zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            if item.filename != 'Metadata/Slic3r_PE_layer_heights_profile.txt':
+                zout.writestr(item, zin.read(item.filename))
+        zout.writestr('Metadata/Slic3r_PE_layer_heights_profile.txt', profile)
+
+
 def main():
     if len(sys.argv) >= 2 and sys.argv[1] == 'row':
         name, slicer, model, gcode, verdict = sys.argv[2:7]
@@ -145,6 +165,8 @@ def main():
         model, q, hmin, hmax, hmid, first = sys.argv[2], *map(float, sys.argv[3:8])
         for z in prusa_plan(Facets(model), q, hmin, hmax, hmid, first):
             print(f'{z:.6f}')
+    elif len(sys.argv) >= 2 and sys.argv[1] == 'prusa-3mf':
+        prusa_3mf(*sys.argv[2:5])
     elif len(sys.argv) >= 2 and sys.argv[1] == 'table':
         rows = [l.rstrip('\n').split('\t') for l in open(sys.argv[2]) if l.strip()]
         print(f'{"model":<24} {"slicer":<34} {"layers":>6} {"max cusp":>9} {"mean cusp":>10}  gcheck')
@@ -155,7 +177,7 @@ def main():
             by.setdefault(r[0], {})[r[1]] = r
         print()
         for name, s in by.items():
-            a, p = s.get('tranche adaptive q=0.5'), s.get('prusa adaptive q=0.5 (formula)')
+            a, p = s.get('tranche adaptive q=0.5'), s.get('prusa adaptive q=0.5')
             if a and p:
                 print(f'{name}: tranche adaptive / PrusaSlicer adaptive: layers {int(a[2]) / int(p[2]):.2f}, '
                       f'max cusp {float(a[3]) / float(p[3]):.2f}, mean cusp {float(a[4]) / float(p[4]):.2f}')

@@ -3,8 +3,9 @@
 # bunny: tranche with adaptive_layers at adaptive_quality 50% (min 0.07, max 0.3 mm), tranche at
 # 0.2 mm, PrusaSlicer at 0.2 mm, and PrusaSlicer's adaptive layers at its quality 0.5 with the
 # same bounds and its 0.2 mm layer height. prusa-slicer's command line cannot turn adaptive
-# layers on (a GUI button makes the profile), so that row's layer tops are computed by
-# adaptive_cusp.py from PrusaSlicer's formula (see its header), not sliced. For each: the layer
+# layers on (a GUI button makes the profile), so adaptive_cusp.py computes that profile from
+# PrusaSlicer's formula (see its header) and writes it into a 3MF, as the GUI saves it, which
+# prusa-slicer then slices. For each: the layer
 # count, the largest and the mean cusp height (from the mesh's facet normals and the layer
 # tops of the G-code, first layer left out: adaptive_cusp.py), and gcheck's verdict on the
 # G-code. Goal: fewer layers than PrusaSlicer's adaptive at the same or a smaller largest cusp.
@@ -59,12 +60,12 @@ while read -r name model; do
         CMD=("${keep[@]}" "${ADAPTIVE[@]}" --set adaptive_quality=75%) ;;
       tranche) label="tranche 0.2 mm"; peer_cmd tranche "$model" "$g" ;;
       prusa) label="prusa 0.2 mm"; command -v prusa-slicer >/dev/null || continue; peer_cmd prusa "$model" "$g" ;;
-      prusa_adaptive)
-        label="prusa adaptive q=0.5 (formula)"
-        g="$out/$name.$s.txt"
-        /usr/bin/python3 "$here/adaptive_cusp.py" prusa-plan "$model" 0.5 0.07 0.3 0.2 0.2 >"$g"
-        /usr/bin/python3 "$here/adaptive_cusp.py" row "$name" "$label" "$model" "$g" "not sliced" >>"$rows"
-        continue ;;
+      prusa_adaptive)  # the profile its GUI's button would make, in a 3MF its command line slices
+        label="prusa adaptive q=0.5"; command -v prusa-slicer >/dev/null || continue
+        /usr/bin/python3 "$here/adaptive_cusp.py" prusa-plan "$model" 0.5 0.07 0.3 0.2 0.2 >"$out/$name.plan.txt"
+        env -u DISPLAY prusa-slicer --export-3mf -o "$out/$name.3mf" "$model" >"$out/$name.3mf.log" 2>&1
+        /usr/bin/python3 "$here/adaptive_cusp.py" prusa-3mf "$out/$name.3mf" "$out/$name.plan.txt" "$out/$name.profile.3mf"
+        peer_cmd prusa "$out/$name.profile.3mf" "$g" ;;
     esac
     env -u DISPLAY timeout 900 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
     if [[ ! -s $g ]]; then
