@@ -38,6 +38,7 @@ struct Layer {
   int index = 0;
   double z_bottom = 0;  // mm
   double z_top = 0;     // mm: the nozzle height while printing this layer
+  double max_slope = 0;  // deg: layer.max_slope (geometry/slice/surface_slopes.h)
   double z_slice() const { return 0.5 * (z_bottom + z_top); }  // where the mesh is cut
   double height() const { return z_top - z_bottom; }
 

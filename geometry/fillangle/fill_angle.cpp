@@ -22,6 +22,7 @@ Result<std::unique_ptr<ScriptAngles>> ScriptAngles::compute(FillAngleScript& scr
     c.clear_from(schema::Level::Layer);
     c.set(FieldId::LayerIndex, layer.index);
     c.set(FieldId::LayerZBottom, layer.z_bottom);
+    c.set(FieldId::LayerMaxSlope, layer.max_slope);
     c.set(FieldId::LayerZ, layer.z_top);
     c.set(FieldId::LayerHeight, layer.height());
     c.set(FieldId::LayerIslands, static_cast<double>(layer.islands.size()));

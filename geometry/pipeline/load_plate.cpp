@@ -119,20 +119,42 @@ Result<plate::Bed> decide_bed(const ctx::Cascade& cascade) {
 
 // Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
 Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
-                                             const std::string& model) {
+                                             const std::string& model, const geo::SurfaceSlopes* slopes,
+                                             Report* report) {
+  const ctx::PropertyValues& P = print.props;
+  const bool adaptive = P[schema::PropId::AdaptiveLayers] != 0;
+  geo::AdaptiveParams ap;
+  ap.min_height = P[schema::PropId::MinLayerHeight];
+  ap.max_height = P[schema::PropId::MaxLayerHeight];
+  ap.quality = P[schema::PropId::AdaptiveQuality];
+  if (adaptive)
+    if (Status s = geo::check_adaptive(ap); !s) return s.error();
+  // layer.max_slope looks max_layer_height ahead (at least 1 µm, for bounds adaptive_layers
+  // does not check when it is off).
+  const double ahead = std::isfinite(ap.max_height) ? std::max(0.001, ap.max_height) : 0.3;
+  const bool slope = slopes && !slopes->empty() && (adaptive || cascade.reads(schema::FieldId::LayerMaxSlope));
+  auto max_slope = [&](double z) { return slope ? slopes->max_slope_deg(z, z + ahead) : 0.0; };
   Status error = ok_status();
+  size_t planned_layers = 0, overridden = 0;  // layers after the first, and those a rule decided
   geo::LayerHeightParams params;
   params.height = [&](int index, double z_bottom) {
-    auto h = cascade.layer_height(print.ctx, print.props, index, z_bottom);
+    const double planned = adaptive ? (slopes ? slopes->adaptive_height(z_bottom, ap) : ap.max_height) : 0.0;
+    auto h = cascade.layer_height(print.ctx, P, index, z_bottom, max_slope(z_bottom), planned);
     if (!h) {
       if (error) error = h.error();
       return 0.2;
     }
+    if (index > 0) ++planned_layers, overridden += *h != planned;
     return *h;
   };
   auto layers = geo::plan_layer_heights(top, params);
   if (!error) return error.error();
   if (!layers) return Error{model, layers.error().to_string()};
+  for (auto& l : *layers) l.max_slope = max_slope(l.z_bottom);
+  if (adaptive && report && planned_layers > 1 && overridden == planned_layers)
+    report->warn("adaptive-overridden", model,
+                 "adaptive_layers is on, but a rule or --set decides layer_height on every layer, so the planner's "
+                 "heights are not used: drop --set layer_height, or limit the rule to the layers it is meant for");
   return layers;
 }
 
@@ -178,8 +200,12 @@ Result<SlicedPlate> slice_plate(const plate::Plate& plate, const ctx::Cascade& c
   out.print = std::move(*print);
   if (plate.bed)
     if (Status s = same_bed(*plate.bed, out.print.props); !s) return s.error();
+  geo::SurfaceSlopes slopes;  // only when something reads it: it costs a pass over the triangles
+  if (out.print.props[schema::PropId::AdaptiveLayers] != 0 || cascade.reads(schema::FieldId::LayerMaxSlope))
+    for (const Part& part : parts) slopes.add(part.mesh);
   auto planned = plan_heights(cascade, out.print, out.facts.height,
-                              plate.objects.size() == 1 ? plate.objects[0].file : std::string("the plate"));
+                              plate.objects.size() == 1 ? plate.objects[0].file : std::string("the plate"), &slopes,
+                              &report);
   if (!planned) return planned.error();
   out.layers = std::move(*planned);
   for (size_t k = 0; k < parts.size(); ++k) {

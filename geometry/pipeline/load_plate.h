@@ -4,6 +4,7 @@
 // islands added to the layers, tagged with their object, at their place on the bed.
 #pragma once
 
+#include "geometry/slice/surface_slopes.h"
 #include <string>
 #include <vector>
 
@@ -37,8 +38,14 @@ plate::Bed bed_of(const ctx::PropertyValues& print);
 Result<plate::Bed> decide_bed(const ctx::Cascade& cascade);
 
 // Layer heights from the cascade (layer_height, first_layer_height, --set) up to `top` mm.
+// `slopes`, the models' surfaces (none for a drawing: only vertical walls), give layer.max_slope
+// and, with adaptive_layers, the planner's height that layer_height rules start from.
+// Errors: contradictory adaptive bounds (min_layer_height > max_layer_height, adaptive_quality
+// outside 0–1) when adaptive_layers is on. Warns (`report`) when adaptive_layers is on but a
+// rule or --set decides layer_height on every layer, so that the planner's heights are unused.
 Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const PrintStage& print, double top,
-                                             const std::string& model);
+                                             const std::string& model, const geo::SurfaceSlopes* slopes = nullptr,
+                                             Report* report = nullptr);
 
 struct SlicedPlate {
   std::vector<geo::Layer> layers;  // every object's islands (Island::object), in bed coordinates

@@ -49,6 +49,7 @@ Result<std::vector<ObjectPass>> sequential_passes(const std::vector<geo::Layer>&
       own.index = l.index;
       own.z_bottom = l.z_bottom;
       own.z_top = l.z_top;
+      own.max_slope = l.max_slope;
       p.layers.push_back(std::move(own));
     }
     for (const geo::Island& island : l.islands) {

@@ -21,6 +21,7 @@ LayerPlan layer_shell(const setup::PrintSetup& S, int L) {
   p.z_bottom = layer.z_bottom;
   p.z = layer.z_top;
   p.height = layer.height();
+  p.max_slope = layer.max_slope;
   p.area = S.table.get(L, FieldId::LayerArea);
   if (static_cast<size_t>(L) < S.support.size()) p.support_area = S.support[static_cast<size_t>(L)].area_mm2;
   return p;
@@ -47,6 +48,7 @@ void set_layer_fields(ctx::Context& c, const LayerPlan& l, int islands) {
   c.set(FieldId::LayerArea, l.area);
   c.set(FieldId::LayerIslands, islands);
   c.set(FieldId::LayerSupportArea, l.support_area);
+  c.set(FieldId::LayerMaxSlope, l.max_slope);
 }
 
 void set_island_fields(ctx::Context& c, const IslandPlan& i) {

@@ -231,6 +231,44 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   return place_cells(ip, nest, f, fps, first, density);
 }
 
+// Ironing: zig-zags at ironing_spacing over the island's top surfaces (its top solid regions,
+// less half a bead along their border), across the top's lines. Each line lays flow × the
+// layer's height × the spacing of plastic per mm (PrusaSlicer's measure: at 100% a whole
+// layer over the surface), so `flow` (15% by default for this kind) fills the valleys between
+// the top's beads. Paths of kind ironing, which the print order puts after the walls and fill.
+Status add_ironing(IslandPlan& ip, Nest& nest, const std::vector<FillRegion>& fill, double height_mm) {
+  geo::Rings top;
+  for (const FillRegion& region : fill)
+    if (region.kind == PathKind::TopSolid) top = toolpath::union_of(top, region.rings);
+  if (top.empty()) return ok_status();
+  TraceRef log;
+  auto props = nest.path_props(ip.props, PathKind::Ironing, -1, &log);
+  if (!props) return props.error();
+  const double w = (*props)[PropId::Width];
+  const double spacing = ip.props[PropId::IroningSpacing];
+  top = toolpath::offset(top, -0.5 * w);
+  if (top.empty()) return ok_status();
+  toolpath::FillSpec fs;
+  fs.angle_deg = ip.props[PropId::FillAngle] + 90;
+  fs.pitch_mm = spacing;
+  fs.artificial_inset_mm = 0;
+  fs.link_max_mm = 5 * w;
+  const double scale = height_mm * spacing / toolpath::bead_area_mm2(w, height_mm);
+  for (toolpath::FillPath& fp : toolpath::zigzag(toolpath::fill_shape(top, geo::EdgeKind::Real), fs)) {
+    PathPlan p;
+    p.kind = PathKind::Ironing;
+    p.width = static_cast<float>(w);
+    p.flow_scale = static_cast<float>(scale);
+    p.pts = std::move(fp.pts);
+    p.border = std::move(fp.border);
+    p.props = *props;
+    p.props[PropId::FillAngle] = fs.angle_deg;
+    p.trace = nest.path_log(log);
+    ip.paths.push_back(std::move(p));
+  }
+  return ok_status();
+}
+
 }  // namespace
 
 Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double height_mm,
@@ -328,6 +366,8 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
     if (Status s = build_cells(ip, nest, region, borders, angle, height_mm); !s) return s;
     regions.push_back({region.kind, EdgeGrid(region.rings)});
   }
+  if (P[PropId::Ironing] != 0)
+    if (Status s = add_ironing(ip, nest, fill, height_mm); !s) return s;
   return ok_status();
 }
 

@@ -159,7 +159,7 @@ void LayerTask::order() {
   ordered.reserve(plan_.islands.size());
   for (size_t i : island_order(plan_.islands, pos, L)) {
     IslandPlan& ip = plan_.islands[i];
-    order_island(ip, regions_[static_cast<size_t>(ip.index)], plan_.height, pos);
+    order_island(ip, regions_[static_cast<size_t>(ip.index)], plan_.height, pos, SeamFrame{L, S.shift});
     ordered.push_back(std::move(ip));
   }
   plan_.islands = std::move(ordered);

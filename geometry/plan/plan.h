@@ -132,6 +132,7 @@ struct IslandPlan {
 struct LayerPlan {
   int index = 0;
   double z_bottom = 0, z = 0, height = 0, area = 0;  // mm, mm²
+  double max_slope = 0;                              // deg, layer.max_slope
   double support_area = 0;                           // mm², layer.support_area
   ctx::PropertyValues props;                         // as decided at the layer stage
   TraceRef trace;                                    // provenance of the layer stage and a layer-wide fan

@@ -69,11 +69,17 @@ namespace {
 // One island's ordering: its loops and zig-zags taken apart, then emitted into `out`.
 class IslandOrder {
  public:
-  IslandOrder(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos)
-      : ip_(ip), regions_(regions), height_(height_mm), pos_(pos) {
+  IslandOrder(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos,
+              const SeamFrame& frame)
+      : ip_(ip), regions_(regions), height_(height_mm), pos_(pos), frame_(frame) {
     outer_first_ = ip.props[PropId::OuterFirst] != 0;
     seam_ = static_cast<schema::Seam>(static_cast<int>(ip.props[PropId::Seam]));
-    for (auto& p : ip.paths) (p.closed ? loops_ : fills_).push_back(std::move(p));
+    if (seam_ == schema::Seam::Point) {
+      const geo::Point bed = geo::to_point(ip.props[PropId::SeamX], ip.props[PropId::SeamY]);
+      toward_ = geo::Point(bed.X - frame.shift.X, bed.Y - frame.shift.Y);
+    }
+    for (auto& p : ip.paths)
+      (p.closed ? loops_ : p.kind == PathKind::Ironing ? irons_ : fills_).push_back(std::move(p));
     // Loops: by depth (innermost first unless outer_first), nearest seam first within a depth.
     std::stable_sort(loops_.begin(), loops_.end(), [&](const PathPlan& a, const PathPlan& b) {
       return outer_first_ ? a.perimeter < b.perimeter : a.perimeter > b.perimeter;
@@ -89,6 +95,7 @@ class IslandOrder {
       emit_loops(false);
       emit_fills(false);
     }
+    emit_irons();
     if (!out_.empty() && !out_.back().pts.empty()) pos_ = out_.back().pts.back();
     for (size_t i = 0; i < out_.size(); ++i) out_[i].index = static_cast<int>(i);
     ip_.paths = std::move(out_);
@@ -103,7 +110,7 @@ class IslandOrder {
       size_t j = i;
       while (j < loops_.size() && loops_[j].perimeter == loops_[i].perimeter) ++j;
       std::vector<size_t> seams(j - i);
-      for (size_t k = i; k < j; ++k) seams[k - i] = toolpath::choose_seam(loops_[k].pts, seam_, pos_);
+      for (size_t k = i; k < j; ++k) seams[k - i] = seam_of(k);
       std::vector<char> used(j - i, 0);
       for (size_t step = i; step < j; ++step) {
         size_t bk = link && step == 0 && loops_[i].perimeter == deepest_ ? link_first(i, j, seams)
@@ -139,13 +146,26 @@ class IslandOrder {
     return bk;
   }
 
+  // Where loop k (an index into loops_, fixed once sorted) starts. A random seam is a vertex
+  // inserted at the drawn point (found again, not inserted twice, when asked again).
+  size_t seam_of(size_t k) {
+    if (seam_ == schema::Seam::Random) {
+      const double u = toolpath::seam_fraction(toolpath::seam_seed(frame_.layer, ip_.index, k));
+      return toolpath::insert_vertex(loops_[k].pts, toolpath::point_at_fraction(loops_[k].pts, u));
+    }
+    toolpath::SeamOptions o;
+    o.mode = seam_;
+    o.toward = toward_;
+    return toolpath::choose_seam(loops_[k].pts, o, pos_);
+  }
+
   // The unused loop of [i, j) whose seam is nearest.
-  size_t nearest_seam(size_t i, size_t j, std::vector<size_t>& seams, const std::vector<char>& used) const {
+  size_t nearest_seam(size_t i, size_t j, std::vector<size_t>& seams, const std::vector<char>& used) {
     double bd = 1e300;
     size_t bk = i;
     for (size_t k = i; k < j; ++k) {
       if (used[k - i]) continue;
-      size_t s = seam_ == schema::Seam::Nearest ? toolpath::choose_seam(loops_[k].pts, seam_, pos_) : seams[k - i];
+      size_t s = seam_ == schema::Seam::Nearest ? seam_of(k) : seams[k - i];
       seams[k - i] = s;
       double d = dist2(pos_, loops_[k].pts[s]);
       if (d < bd) bd = d, bk = k;
@@ -178,8 +198,8 @@ class IslandOrder {
     // outer loop's seam, so that the step from one loop to the next is short.
     std::vector<geo::Point> seams_out;
     if (before_loops && seam_ != schema::Seam::Nearest)
-      for (const auto& l : loops_)
-        if (l.perimeter == 0) seams_out.push_back(l.pts[toolpath::choose_seam(l.pts, seam_, pos_)]);
+      for (size_t k = 0; k < loops_.size(); ++k)
+        if (loops_[k].perimeter == 0) seams_out.push_back(loops_[k].pts[seam_of(k)]);
     toolpath::EndCost end_cost;
     if (!seams_out.empty())
       end_cost = [&](const geo::Point& e) {
@@ -216,21 +236,44 @@ class IslandOrder {
     if (out_.size() > first_fill && !out_.back().pts.empty()) pos_ = out_.back().pts.back();
   }
 
+  // Ironing last, once the walls and the top are printed: its zig-zags in the order with the
+  // fewest and shortest travels.
+  void emit_irons() {
+    if (irons_.empty()) return;
+    std::vector<const geo::Ring*> ends;
+    for (const auto& f : irons_) ends.push_back(&f.pts);
+    auto step = [&](size_t, const geo::Point& a, size_t, const geo::Point& b) {
+      return std::sqrt(dist2(a, b)) * geo::kMmPerUnit + 10.0;
+    };
+    for (const toolpath::Visit& v : toolpath::chain_open_best(ends, pos_, step)) {
+      PathPlan& p = irons_[v.index];
+      if (v.reversed) {
+        std::reverse(p.pts.begin(), p.pts.end());
+        std::reverse(p.border.begin(), p.border.end());
+      }
+      out_.push_back(std::move(p));
+    }
+    if (!out_.empty() && !out_.back().pts.empty()) pos_ = out_.back().pts.back();
+  }
+
   IslandPlan& ip_;
   const std::vector<FillGrid>& regions_;
   double height_;
   geo::Point& pos_;
+  SeamFrame frame_;
+  geo::Point toward_;
   bool outer_first_ = false;
   schema::Seam seam_ = schema::Seam::Aligned;
   int deepest_ = 0;
-  std::vector<PathPlan> loops_, fills_, out_;
+  std::vector<PathPlan> loops_, fills_, irons_, out_;
 };
 
 }  // namespace
 
-void order_island(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos) {
+void order_island(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos,
+                  const SeamFrame& frame) {
   if (ip.replaced && ip.paths.empty()) return;
-  IslandOrder(ip, regions, height_mm, pos).run();
+  IslandOrder(ip, regions, height_mm, pos, frame).run();
 }
 
 }  // namespace tranche::plan

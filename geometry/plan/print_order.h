@@ -27,7 +27,14 @@ std::vector<size_t> island_order(const std::vector<IslandPlan>& islands, const g
 // (innermost first unless outer_first) with their seams, zig-zags in the order with the fewest
 // and shortest travels, joined where they end next to each other inside one of `regions`;
 // infill_first puts the fill first and runs its last zig-zag into the innermost loop. Sets each
-// path's index.
-void order_island(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos);
+// path's index. `frame` is what the seam needs beyond the island: the layer (random seams are
+// seeded by layer, island and loop) and the shift from model to bed coordinates (seam = point
+// takes seam_x, seam_y on the bed).
+struct SeamFrame {
+  int layer = 0;
+  geo::Point shift;  // model units + shift = bed units
+};
+void order_island(IslandPlan& ip, const std::vector<FillGrid>& regions, double height_mm, geo::Point& pos,
+                  const SeamFrame& frame = {});
 
 }  // namespace tranche::plan

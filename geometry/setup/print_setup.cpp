@@ -40,6 +40,7 @@ std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, doub
     dst.index = src.index;
     dst.z_bottom = src.z_bottom;
     dst.z_top = src.z_top;
+    dst.max_slope = src.max_slope;
     dst.islands.reserve(src.islands.size());
     for (uint32_t k = 0; k < src.islands.size(); ++k) {
       const geo::Island& isl = src.islands[k];
@@ -115,6 +116,7 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
     s->table.set(i, FieldId::LayerHeight, l.height());
     s->table.set(i, FieldId::LayerArea, layer_area_mm2(l));
     s->table.set(i, FieldId::LayerIslands, static_cast<double>(l.islands.size()));
+    s->table.set(i, FieldId::LayerMaxSlope, l.max_slope);
   }
   s->print_ctx = print_ctx;
   s->print_ctx.set(FieldId::PrintLayers, static_cast<double>(s->layers.size()));
@@ -128,7 +130,7 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
   ctx::Context c0 = s->print_ctx;
   c0.clear_from(schema::Level::Layer);
   for (FieldId f : {FieldId::LayerIndex, FieldId::LayerZBottom, FieldId::LayerZ, FieldId::LayerHeight,
-                    FieldId::LayerArea, FieldId::LayerIslands})
+                    FieldId::LayerArea, FieldId::LayerIslands, FieldId::LayerMaxSlope})
     c0.set(f, s->table.get(0, f));
   s->hook_props = P;
   if (Status st = cascade.decide(schema::Stage::Layer, c0, s->hook_props); !st) return st.error();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace tranche::toolpath {
@@ -21,8 +22,118 @@ double turn_at(const geo::Ring& r, size_t i) {
 }  // namespace
 
 size_t choose_seam(const geo::Ring& loop, schema::Seam mode, const Point& from) {
+  SeamOptions o;
+  o.mode = mode;
+  return choose_seam(loop, o, from);
+}
+
+namespace {
+
+double edge_mm(const Point& a, const Point& b) { return std::sqrt(dist2(a, b)) * geo::kMmPerUnit; }
+
+// The point at arclength `d` mm from vertex i, walking backwards (dir = -1) or forwards (+1).
+Point along(const geo::Ring& r, size_t i, int dir, double d) {
+  const size_t n = r.size();
+  size_t cur = i;
+  for (size_t steps = 0; steps < n; ++steps) {
+    size_t next = dir > 0 ? (cur + 1) % n : (cur + n - 1) % n;
+    double e = edge_mm(r[cur], r[next]);
+    if (e >= d && e > 0) {
+      double t = d / e;
+      return Point(r[cur].X + static_cast<geo::coord_t>(std::llround(t * double(r[next].X - r[cur].X))),
+                   r[cur].Y + static_cast<geo::coord_t>(std::llround(t * double(r[next].Y - r[cur].Y))));
+    }
+    d -= e;
+    cur = next;
+  }
+  return r[cur];
+}
+
+// Turn at vertex i (radians, positive = left) between the points `d` mm before and after it.
+double turn_over(const geo::Ring& r, size_t i, double d) {
+  const Point a = along(r, i, -1, d), b = r[i], c = along(r, i, +1, d);
+  double ux = double(b.X - a.X), uy = double(b.Y - a.Y), vx = double(c.X - b.X), vy = double(c.Y - b.Y);
+  if ((ux == 0 && uy == 0) || (vx == 0 && vy == 0)) return 0;
+  return std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+}
+
+// The vertex nearest the point at a fraction u ∈ [0, 1) of the loop's length from vertex 0.
+size_t at_fraction(const geo::Ring& loop, double u) {
+  const size_t n = loop.size();
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) total += edge_mm(loop[i], loop[(i + 1) % n]);
+  double target = u * total, s = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double e = edge_mm(loop[i], loop[(i + 1) % n]);
+    if (s + e > target) return target - s <= s + e - target ? i : (i + 1) % n;
+    s += e;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Point point_at_fraction(const geo::Ring& loop, double u) {
+  const size_t n = loop.size();
+  if (n == 0) return Point(0, 0);
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) total += edge_mm(loop[i], loop[(i + 1) % n]);
+  double target = u * total, s = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Point &a = loop[i], &b = loop[(i + 1) % n];
+    double e = edge_mm(a, b);
+    if (s + e > target && e > 0) {
+      double t = (target - s) / e;
+      return Point(a.X + static_cast<geo::coord_t>(std::llround(t * double(b.X - a.X))),
+                   a.Y + static_cast<geo::coord_t>(std::llround(t * double(b.Y - a.Y))));
+    }
+    s += e;
+  }
+  return loop[0];
+}
+
+uint64_t seam_seed(int layer, int island, size_t loop) {
+  // splitmix64 over the three numbers: nearby layers get unrelated seams.
+  auto mix = [](uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  return mix(mix(mix(static_cast<uint64_t>(static_cast<uint32_t>(layer))) ^ static_cast<uint64_t>(static_cast<uint32_t>(island))) ^
+             static_cast<uint64_t>(loop));
+}
+
+size_t choose_seam(const geo::Ring& loop, const SeamOptions& options, const Point& from) {
   size_t best = 0, n = loop.size();
   if (n == 0) return 0;
+  schema::Seam mode = options.mode;
+  if (mode == schema::Seam::Random) return at_fraction(loop, seam_fraction(options.seed));
+  if (mode == schema::Seam::Point) {
+    double bd = 1e300;
+    for (size_t i = 0; i < n; ++i)
+      if (double d = dist2(loop[i], options.toward); d < bd) bd = d, best = i;
+    return best;
+  }
+  if (mode == schema::Seam::SharpestCorner) {
+    constexpr double kReachMm = 0.5;
+    constexpr double kMinTurn = 30.0 * std::numbers::pi / 180.0;
+    double length = 0;
+    for (size_t i = 0; i < n; ++i) length += edge_mm(loop[i], loop[(i + 1) % n]);
+    const double reach = std::min(kReachMm, length / 8);
+    double bs = -1e300;
+    for (size_t i = 0; i < n; ++i) {
+      double t = turn_over(loop, i, reach);
+      if (std::abs(t) < kMinTurn) continue;
+      // Material is on the left: a right turn is a concave corner. Corners within a degree of
+      // each other are equal (slicing jitters them from layer to layer): the rearmost wins.
+      double deg = std::round(std::abs(t) * 180.0 / std::numbers::pi);
+      double score = (t < 0 ? deg : 0.5 * deg) * 1e4 + geo::to_mm(loop[i].Y) - 1e-6 * geo::to_mm(loop[i].X);
+      if (score > bs) bs = score, best = i;
+    }
+    if (bs > -1e300) return best;
+    mode = schema::Seam::Aligned;  // no corner: a smooth loop
+  }
   if (mode == schema::Seam::Nearest) {
     double bd = 1e300;
     for (size_t i = 0; i < n; ++i) {

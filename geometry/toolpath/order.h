@@ -6,9 +6,16 @@
 // on one layer is found again at the same place on the next (the choice depends only on the
 // loop's shape, never on the previous layer, so layers stay independent and parallel);
 // `nearest` starts at the vertex nearest the nozzle.
+// `random` starts at a point drawn uniformly along the loop's length (choose_seam: its nearest
+// vertex; the print order inserts a vertex there) from a seed the caller makes of the layer,
+// the island and the loop, so the same input gives the same G-code. `sharpest_corner` starts in the loop's sharpest concave corner (a convex corner only
+// when it has no concave one, at half the weight), measured over 0.5 mm either side of a vertex
+// so that a corner rounded by many short edges counts whole; a loop that turns nowhere by 30° or
+// more (a circle) falls back to `aligned`. `point` starts at the vertex nearest a given point.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -20,6 +27,21 @@ namespace tranche::toolpath {
 
 // Index of the vertex where a closed loop starts.
 size_t choose_seam(const geo::Ring& loop, schema::Seam mode, const geo::Point& from);
+// The point at a fraction u ∈ [0, 1) of the loop's length from vertex 0 (random seams: the
+// print order inserts a vertex there, so a loop of few vertices gets seams along its edges).
+geo::Point point_at_fraction(const geo::Ring& loop, double u);
+// The fraction of a loop's length `random` draws from a seed.
+inline double seam_fraction(uint64_t seed) { return static_cast<double>(seed >> 11) * 0x1.0p-53; }
+
+// What the seam modes other than aligned, nearest and rear need.
+struct SeamOptions {
+  schema::Seam mode = schema::Seam::Aligned;
+  uint64_t seed = 0;   // random: the same seed, the same seam
+  geo::Point toward;   // point: the point the seam is drawn toward, in the loop's frame
+};
+size_t choose_seam(const geo::Ring& loop, const SeamOptions& options, const geo::Point& from);
+// A seed for `random` from the layer, the island and the loop within it (a 64-bit mix).
+uint64_t seam_seed(int layer, int island, size_t loop);
 // The loop as a closed polyline starting and ending at vertex `start`.
 geo::Ring open_loop_at(const geo::Ring& loop, size_t start);
 

@@ -56,15 +56,19 @@ Result<PropertyValues> Cascade::print_props(const Context& print_ctx) const {
   return p;
 }
 
-Result<double> Cascade::layer_height(const Context& print_ctx, const PropertyValues& print, int index,
-                                     double z_bottom) const {
+Result<double> Cascade::layer_height(const Context& print_ctx, const PropertyValues& print, int index, double z_bottom,
+                                     double max_slope, double planned) const {
   Context c = print_ctx;
   c.clear_from(schema::Level::Layer);
   c.set(schema::FieldId::LayerIndex, index);
   c.set(schema::FieldId::LayerZBottom, z_bottom);
+  c.set(schema::FieldId::LayerMaxSlope, max_slope);
   PropertyValues p = print;
   // The built-in "rule when layer.index == 0 { layer_height = first_layer_height }".
-  if (index == 0) p[PropId::LayerHeight] = print[PropId::FirstLayerHeight];
+  if (index == 0)
+    p[PropId::LayerHeight] = print[PropId::FirstLayerHeight];
+  else if (planned > 0)
+    p[PropId::LayerHeight] = planned;
   if (Status s = decide(schema::Stage::LayerPlan, c, p); !s) return s.error();
   return p[PropId::LayerHeight];
 }

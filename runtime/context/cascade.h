@@ -51,9 +51,11 @@ class Cascade {
   Result<PropertyValues> print_props(const Context& print_ctx) const;
   // layer_height (mm) of layer `index` whose bottom is at `z_bottom` mm: first_layer_height on
   // layer 0 and layer_height elsewhere, unless a rule or --set decides otherwise. `print` is
-  // the print stage's result.
-  Result<double> layer_height(const Context& print_ctx, const PropertyValues& print, int index,
-                              double z_bottom) const;
+  // the print stage's result. `max_slope` is layer.max_slope (deg); `planned` (mm, > 0), the
+  // adaptive planner's height, replaces layer_height as the value rules start from on layers
+  // after the first.
+  Result<double> layer_height(const Context& print_ctx, const PropertyValues& print, int index, double z_bottom,
+                              double max_slope = 0, double planned = 0) const;
 
  private:
   Cascade() = default;

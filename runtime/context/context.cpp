@@ -38,6 +38,8 @@ int LayerTable::column(FieldId field) {
       return 5;
     case FieldId::LayerTime:
       return 6;
+    case FieldId::LayerMaxSlope:
+      return 7;
     default:
       return -1;
   }

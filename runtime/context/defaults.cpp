@@ -23,6 +23,8 @@ constexpr BuiltinRule kRules[] = {
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Bridge), 25},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Skirt), 30},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Ironing), 15},
+    // rule "ironing flow" when path.kind == ironing { flow = 15% }
+    {PropId::Flow, FieldId::PathKind, T::Equals, kind(PathKind::Ironing), 0.15},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Support), 50},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::SupportInterface), 40},
     {PropId::Speed, FieldId::PathKind, T::Equals, kind(PathKind::Brim), 30},

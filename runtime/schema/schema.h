@@ -89,7 +89,7 @@ enum class PathKind : uint8_t {
 };
 enum class Border : uint8_t { None, Real, Artificial };
 enum class Flavor : uint8_t { Marlin, Klipper, RepRapFirmware };
-enum class Seam : uint8_t { Aligned, Nearest, Rear };
+enum class Seam : uint8_t { Aligned, Nearest, Rear, Random, SharpestCorner, Point };
 enum class BedShape : uint8_t { Rectangular, Circular };
 enum class PrintOrder : uint8_t { Layers, Sequential };
 enum class Thumbnails : uint8_t { None, Png, Qoi };

@@ -406,3 +406,46 @@ TEST_CASE("example supports: trees under the table's top, none under the low led
   CHECK(under_ledge == 0);
   CHECK(top == doctest::Approx(14.8));
 }
+
+TEST_CASE("example dome-lid: thick layers on the base, thinner up the dome, seams in the inner corner, the base's top ironed") {
+  TempDir dir("ex-dome-lid");
+  auto g = run_example(dir, "dome-lid").gcode("dome-lid");
+  REQUIRE(!g.layer_z.empty());
+  CHECK(g.layer_z.rbegin()->second == doctest::Approx(17));
+  CHECK(g.layer_z.size() < 75);  // 85 at 0.2 mm
+  std::map<int, double> h;
+  double z = 0;
+  int base = 0, dome = 0, on_top = -1;
+  for (const auto& [layer, top] : g.layer_z) {
+    h[layer] = top - z;
+    if (std::abs(top - 8) < 1e-6) on_top = layer;
+    if (layer > 0 && top < 8 - 1e-6) base += h[layer] > 0.3 - 1e-6;
+    if (top > 16.5 && top < 17 - 1e-6) dome += h[layer] < 0.2;
+    z = top;
+  }
+  CHECK(on_top > 0);  // a layer ends on the base's top
+  CHECK(base > 15);
+  CHECK(dome >= 2);
+  // The model is centred: the L spans x 85-115, y 85-115, its inner corner at (105, 105).
+  std::map<int, std::pair<double, double>> starts;
+  std::set<int> ironed;
+  size_t last_wall = 0, first_iron = SIZE_MAX;
+  for (const auto& m : g.moves) {
+    if (!extrudes(m)) continue;
+    if (m.type == "External perimeter" && !starts.count(m.layer)) starts[m.layer] = {m.x0, m.y0};
+    if (m.type == "External perimeter" && m.layer == on_top) last_wall = std::max(last_wall, m.line);
+    if (m.type == "Ironing") {
+      ironed.insert(m.layer);
+      first_iron = std::min(first_iron, m.line);
+    }
+  }
+  CHECK(ironed == std::set<int>{on_top});
+  CHECK(first_iron > last_wall);
+  int corner = 0;
+  for (const auto& [layer, p] : starts)
+    if (g.layer_z.at(layer) < 8 - 1e-6) {
+      CHECK(std::hypot(p.first - 105, p.second - 105) < 0.6);
+      ++corner;
+    }
+  CHECK(corner > 15);
+}

@@ -255,37 +255,104 @@ TEST_CASE("features/height-range: 0.1 mm layers and four perimeters between 2 an
   CHECK(fine == 20);
 }
 
-TEST_CASE("features/ironing: every top surface path printed, then gone over again at 10% flow") {
+TEST_CASE("features/ironing: top surfaces gone over again after the walls, typed Ironing, at 15% of a layer") {
   TempDir dir("feat-iron");
   auto box = geo::box({20, 20, 2});
   auto plain = slice_with(dir, "plain", box, {});
   auto g = slice_with(dir, "iron", box, Profile().feature("ironing"));
-  auto marks = lines_starting(g, "; ironing");
-  REQUIRE(marks.size() >= 1);
-  // Every move after a mark, up to the next type change or layer, is a low-flow pass at 15 mm/s.
+  // Nothing of the plain print is lost: the same top paths, and ironing only on the last layer
+  // (the box's only top surface), after its walls and its top fill.
+  CHECK(e_per_mm(g, "Top solid infill") == doctest::Approx(e_per_mm(plain, "Top solid infill")));
+  const int last = g.layer_z.rbegin()->first;
   double e_iron = 0, len_iron = 0;
+  size_t first_iron = g.lines.size(), last_other = 0;
   for (const auto& m : g.moves) {
-    auto after = std::upper_bound(marks.begin(), marks.end(), m.line);
-    if (after == marks.begin() || !extrudes(m)) continue;
-    size_t mark = *(after - 1);
-    bool same_block = true;
-    for (size_t l = mark; l < m.line && same_block; ++l)
-      same_block = g.lines[l].rfind(";TYPE:", 0) != 0 && g.lines[l].rfind(";LAYER:", 0) != 0;
-    if (!same_block) continue;
-    CHECK(m.f == 900);
+    if (!extrudes(m)) continue;
+    if (m.type != "Ironing") {
+      if (m.layer == last) last_other = std::max(last_other, m.line);
+      continue;
+    }
+    CHECK(m.layer == last);
+    CHECK(m.f == 900);  // 15 mm/s
+    first_iron = std::min(first_iron, m.line);
     e_iron += m.de;
     len_iron += length(m);
   }
-  REQUIRE(len_iron > 100);
-  double top = e_per_mm(plain, "Top solid infill");
-  CHECK(e_iron / len_iron == doctest::Approx(0.1 * top).epsilon(0.05));
-  // The default paths are all still there: the top layers hold about 110% of their plastic.
-  double plain_top = 0, iron_top = 0;
-  for (const auto& m : plain.moves)
-    if (extrudes(m) && m.type == "Top solid infill") plain_top += m.de;
+  CHECK(first_iron > last_other);  // after the walls and the top
+  // The top's area (the fill inside the walls) gone over at a 0.1 mm spacing: about 18 × 18 mm.
+  CHECK(len_iron > 0.7 * 18 * 18 / 0.1);
+  CHECK(len_iron < 1.1 * 19.5 * 19.5 / 0.1);
+  // 15% of a 0.2 mm layer over a 0.1 mm line spacing, per mm of line.
+  const double filament_area = 3.14159265 * 1.75 * 1.75 / 4;
+  CHECK(e_iron / len_iron == doctest::Approx(0.15 * 0.2 * 0.1 / filament_area).epsilon(0.01));
+  // Crossing the top's lines.
+  double top_angle = -1, iron_angle = -1;
   for (const auto& m : g.moves)
-    if (extrudes(m) && m.type == "Top solid infill") iron_top += m.de;
-  CHECK(iron_top == doctest::Approx(1.1 * plain_top).epsilon(0.03));
+    if (extrudes(m) && m.layer == last && length(m) > 5) {
+      if (m.type == "Top solid infill" && top_angle < 0) top_angle = line_angle(m);
+      if (m.type == "Ironing" && iron_angle < 0) iron_angle = line_angle(m);
+    }
+  CHECK(angle_diff(top_angle, iron_angle) == doctest::Approx(90).epsilon(0.01));
+}
+
+TEST_CASE("features/ironing: the topmost surface only, or the islands a rule picks") {
+  TempDir dir("feat-iron-top");
+  // A step: a 2 mm slab with a 4 mm tower on it, so tops on layers 9 and 29.
+  geo::Mesh m = geo::box({30, 20, 2});
+  geo::append(m, geo::box({10, 10, 4}, {0, 0, 2}));
+  auto types_by_layer = [](const Gcode& g) {
+    std::set<int> layers;
+    for (const auto& mv : g.moves)
+      if (extrudes(mv) && mv.type == "Ironing") layers.insert(mv.layer);
+    return layers;
+  };
+  auto all = types_by_layer(slice_with(dir, "all", m, Profile().feature("ironing")));
+  CHECK(all.count(9));
+  CHECK(all.count(29));
+  auto top = types_by_layer(slice_with(dir, "top", m, Profile().feature("ironing").set("iron_topmost_only", "true")));
+  CHECK(top == std::set<int>{29});
+  // A rule on the island stage alone: the slab's top, by its area.
+  auto own = types_by_layer(slice_with(dir, "own", m, Profile().set("ironing", "island.area > 200 mm2")));
+  CHECK(own == std::set<int>{9});
+}
+
+TEST_CASE("features/adaptive-domes: thick layers on the walls, thin ones at the top, shells of 0.6 mm") {
+  TempDir dir("feat-domes");
+  geo::Mesh ball = geo::sphere(10, 64, 48);
+  auto plain = slice_with(dir, "plain", ball, {});
+  auto g = slice_with(dir, "dome", ball, Profile().feature("adaptive-domes"));
+  REQUIRE(plain.layer_z.size() == 100);
+  CHECK(g.layer_z.size() < 90);
+  CHECK(g.layer_z.rbegin()->second == doctest::Approx(20));
+  std::map<int, double> h;
+  double z = 0, thinnest_top = 1, thickest = 0;
+  for (const auto& [layer, top] : g.layer_z) {
+    h[layer] = top - z;
+    if (layer > 0 && top < 19.99) {
+      CHECK(h[layer] >= 0.07 - 1e-6);
+      CHECK(h[layer] <= 0.3 + 1e-6);
+      thickest = std::max(thickest, h[layer]);
+      if (top > 19) thinnest_top = std::min(thinnest_top, h[layer]);
+    }
+    z = top;
+  }
+  CHECK(thickest == doctest::Approx(0.3));
+  CHECK(thinnest_top < 0.2);
+  // The top 0.6 mm is solid: no sparse infill in the layers whose top is within it.
+  std::set<int> sparse;
+  for (const auto& m : g.moves)
+    if (extrudes(m) && m.type == "Internal infill") sparse.insert(m.layer);
+  int solid_top = 0;
+  for (const auto& [layer, top] : g.layer_z)
+    if (top > 20 - 0.6 + 1e-6) {
+      CHECK_FALSE(sparse.count(layer));
+      ++solid_top;
+    }
+  CHECK(solid_top >= 3);  // the 0.6 mm of thin layers
+  // A later layer_height rule still decides its layers.
+  auto over = slice_with(dir, "over", ball, Profile().feature("adaptive-domes").set("layer_height", "0.25"));
+  for (const auto& [layer, top] : over.layer_z)
+    if (layer > 0 && top < 19.9) CHECK(top - over.layer_z.at(layer - 1) == doctest::Approx(0.25));
 }
 
 TEST_CASE("features/fan-by-layer-time: full fan on short layers, less on long ones, never under 30%") {

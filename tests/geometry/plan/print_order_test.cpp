@@ -2,6 +2,8 @@
 // zig-zags (infill first, seams, joins).
 #include <doctest/doctest.h>
 
+#include <set>
+
 #include "geometry/plan/print_order.h"
 #include "tests/support/print_fixture.h"
 
@@ -105,4 +107,83 @@ TEST_CASE("print order: two zig-zags of one region ending next to each other are
   pos = geo::to_point(1, 0);
   plan::order_island(apart, {}, 0.2, pos);
   CHECK(apart.paths[1].pts.size() == 2);
+}
+
+namespace {
+// A 20 mm square island with two loops, perimeters first, seam mode `m`, its outer loop's start.
+geo::Point outer_seam(schema::Seam m, const plan::SeamFrame& frame, double seam_x = 0, double seam_y = 0,
+                      int island = 0) {
+  IslandPlan ip = island_at(island, 0, 0, 20);
+  ip.props[PropId::InfillFirst] = 0;
+  ip.props[PropId::OuterFirst] = 1;
+  ip.props[PropId::Seam] = static_cast<double>(m);
+  ip.props[PropId::SeamX] = seam_x;
+  ip.props[PropId::SeamY] = seam_y;
+  geo::Ring outer;  // a square with a vertex every mm
+  for (int i = 0; i < 20; ++i) outer.push_back(geo::to_point(i, 0));
+  for (int i = 0; i < 20; ++i) outer.push_back(geo::to_point(20, i));
+  for (int i = 20; i > 0; --i) outer.push_back(geo::to_point(i, 20));
+  for (int i = 20; i > 0; --i) outer.push_back(geo::to_point(0, i));
+  ip.paths = {loop(0, outer), loop(1, test::square_mm(0.6, 0.6, 19.4, 19.4))};
+  geo::Point pos = geo::to_point(10, 30);
+  plan::order_island(ip, {}, 0.2, pos, frame);
+  REQUIRE(ip.paths.size() == 2);
+  REQUIRE(ip.paths[0].perimeter == 0);
+  CHECK(ip.paths[0].pts.front() == ip.paths[0].pts.back());
+  return ip.paths[0].pts.front();
+}
+}  // namespace
+
+TEST_CASE("print order: seam = point starts the loop at its vertex nearest (seam_x, seam_y) on the bed") {
+  // The model sits 100 mm right and 50 mm back on the bed: the point (105, 45) is (5, -5) on it.
+  const plan::SeamFrame frame{3, geo::to_point(100, 50)};
+  CHECK(outer_seam(schema::Seam::Point, frame, 105, 45) == geo::to_point(5, 0));
+  CHECK(outer_seam(schema::Seam::Point, frame, 130, 62.4) == geo::to_point(20, 12));
+}
+
+TEST_CASE("print order: seam = random is the same for the same layer and island, and moves between layers") {
+  const geo::Point a = outer_seam(schema::Seam::Random, {5, {}});
+  CHECK(outer_seam(schema::Seam::Random, {5, {}}) == a);
+  std::set<std::pair<int64_t, int64_t>> seen;
+  for (int layer = 0; layer < 20; ++layer) {
+    geo::Point p = outer_seam(schema::Seam::Random, {layer, {}});
+    seen.insert({p.X, p.Y});
+  }
+  CHECK(seen.size() >= 10);
+  // Another island of the same layer gets its own.
+  std::set<std::pair<int64_t, int64_t>> islands;
+  for (int i = 0; i < 10; ++i) {
+    geo::Point p = outer_seam(schema::Seam::Random, {5, {}}, 0, 0, i);
+    islands.insert({p.X, p.Y});
+  }
+  CHECK(islands.size() >= 5);
+}
+
+TEST_CASE("print order: seam = random draws along the edges, not only at a coarse loop's vertices") {
+  int off_corner = 0;
+  for (int layer = 0; layer < 20; ++layer) {
+    IslandPlan ip = island_at(0, 0, 0, 20);
+    ip.props[PropId::InfillFirst] = 0;
+    ip.props[PropId::Seam] = static_cast<double>(schema::Seam::Random);
+    ip.paths = {loop(0, test::square_mm(0.2, 0.2, 19.8, 19.8))};
+    geo::Point pos = geo::to_point(10, 30);
+    plan::order_island(ip, {}, 0.2, pos, {layer, {}});
+    REQUIRE(ip.paths.size() == 1);
+    const auto& pts = ip.paths[0].pts;
+    CHECK(pts.front() == pts.back());
+    const geo::Point s = pts.front();
+    // On the square's outline, and (nearly always) between its corners.
+    const bool on_x = s.X == geo::to_point(0.2, 0).X || s.X == geo::to_point(19.8, 0).X;
+    const bool on_y = s.Y == geo::to_point(0, 0.2).Y || s.Y == geo::to_point(0, 19.8).Y;
+    CHECK((on_x || on_y));
+    off_corner += !(on_x && on_y);
+    // The same layer again: the same seam.
+    IslandPlan again = island_at(0, 0, 0, 20);
+    again.props = ip.props;
+    again.paths = {loop(0, test::square_mm(0.2, 0.2, 19.8, 19.8))};
+    geo::Point pos2 = geo::to_point(10, 30);
+    plan::order_island(again, {}, 0.2, pos2, {layer, {}});
+    CHECK(again.paths[0].pts.front() == s);
+  }
+  CHECK(off_corner >= 18);
 }

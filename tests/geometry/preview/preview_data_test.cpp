@@ -165,7 +165,7 @@ TEST_CASE("preview data: enum and bool properties carry their value names, numbe
   PreviewPrint print;
   auto json = encode_preview_json(print);
   REQUIRE(json.ok());
-  CHECK(json->find("[\"seam\",\"\",[\"aligned\",\"nearest\",\"rear\"]]") != std::string::npos);
+  CHECK(json->find("[\"seam\",\"\",[\"aligned\",\"nearest\",\"rear\",\"random\",\"sharpest_corner\",\"point\"]]") != std::string::npos);
   CHECK(json->find("[\"outer_first\",\"\",[\"false\",\"true\"]]") != std::string::npos);
   CHECK(json->find("[\"speed\",\"mm/s\"]") != std::string::npos);
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <set>
 
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
@@ -65,6 +66,104 @@ TEST_CASE("seams: rear picks the largest y, nearest the closest vertex, aligned 
   CHECK(open.size() == 6);
   CHECK(open.front() == open.back());
   CHECK(open.front() == r[2]);
+}
+
+namespace {
+geo::Ring circle_mm(double cx, double cy, double r, int n) {
+  geo::Ring c;
+  for (int i = 0; i < n; ++i) {
+    double a = 2 * std::numbers::pi * i / n;
+    c.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return c;
+}
+SeamOptions seam_mode(schema::Seam m) {
+  SeamOptions o;
+  o.mode = m;
+  return o;
+}
+}  // namespace
+
+TEST_CASE("seams: random is the same for the same seed and spread along the loop for others") {
+  const geo::Ring c = circle_mm(0, 0, 10, 100);
+  SeamOptions o = seam_mode(schema::Seam::Random);
+  o.seed = seam_seed(7, 2, 1);
+  const size_t first = choose_seam(c, o, {});
+  CHECK(choose_seam(c, o, geo::to_point(50, 50)) == first);  // the nozzle does not matter
+  CHECK(seam_seed(7, 2, 1) == o.seed);
+  CHECK(seam_seed(8, 2, 1) != o.seed);
+  CHECK(seam_seed(7, 3, 1) != o.seed);
+  CHECK(seam_seed(7, 2, 0) != o.seed);
+  // Over 400 layers the seams of one loop land all round it: each quarter gets 15% to 35%.
+  std::set<size_t> seen;
+  int quarter[4] = {0, 0, 0, 0};
+  for (int layer = 0; layer < 400; ++layer) {
+    o.seed = seam_seed(layer, 0, 0);
+    size_t s = choose_seam(c, o, {});
+    REQUIRE(s < c.size());
+    seen.insert(s);
+    ++quarter[s / 25];
+  }
+  CHECK(seen.size() > 80);
+  for (int q : quarter) CHECK((q > 60 && q < 140));
+  // Along the length, not by vertex: a square with one side cut into 100 vertices is not
+  // favoured there (its share of seams follows its quarter of the length).
+  geo::Ring sq;
+  for (int i = 0; i < 100; ++i) sq.push_back(geo::to_point(i * 0.1, 0));
+  sq.push_back(geo::to_point(10, 0));
+  sq.push_back(geo::to_point(10, 10));
+  sq.push_back(geo::to_point(0, 10));
+  int bottom = 0;
+  for (int layer = 0; layer < 400; ++layer) {
+    o.seed = seam_seed(layer, 0, 0);
+    const size_t v = choose_seam(sq, o, {});
+    if (v >= 1 && v < 100) ++bottom;  // inside the bottom edge (vertex 0 also takes the left edge's end)
+  }
+  CHECK((bottom > 60 && bottom < 140));
+}
+
+TEST_CASE("seams: sharpest_corner hides in the concave corner wherever it is, falls back to aligned on a circle") {
+  // A square with a notch in its front edge: aligned goes to the rear, sharpest_corner into the
+  // notch's corners (equal: the rearmost, then leftmost).
+  geo::Ring notch{geo::to_point(0, 0),  geo::to_point(4, 0),  geo::to_point(4, 3),   geo::to_point(6, 3),
+                  geo::to_point(6, 0),  geo::to_point(10, 0), geo::to_point(10, 10), geo::to_point(0, 10)};
+  CHECK(notch[choose_seam(notch, schema::Seam::Aligned, {})].Y == geo::to_point(0, 10).Y);
+  CHECK(choose_seam(notch, seam_mode(schema::Seam::SharpestCorner), {}) == 2);
+  // A concave right angle beats a sharper convex corner (convex ones count half).
+  geo::Ring spike{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 5), geo::to_point(5, 5),
+                  geo::to_point(5, 6), geo::to_point(0, 30)};
+  CHECK(choose_seam(spike, seam_mode(schema::Seam::SharpestCorner), {}) == 3);
+  // No concave corner: the sharpest convex one, the rear one among equals.
+  geo::Ring sq{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 10), geo::to_point(0, 10)};
+  CHECK(choose_seam(sq, seam_mode(schema::Seam::SharpestCorner), {}) == 3);
+  geo::Ring tri{geo::to_point(0, 0), geo::to_point(20, 0), geo::to_point(0, 3)};
+  CHECK(choose_seam(tri, seam_mode(schema::Seam::SharpestCorner), {}) == 1);
+  // A corner rounded by many short edges counts as one corner: the seam lands inside it.
+  geo::Ring rounded{geo::to_point(0, 0), geo::to_point(30, 0), geo::to_point(30, 10)};
+  for (int i = 0; i <= 8; ++i) {  // a 90° fillet of radius 0.2 mm at (10, 10), concave
+    double a = std::numbers::pi / 2 * i / 8;
+    rounded.push_back(geo::to_point(10.2 - 0.2 * std::sin(a), 10.2 - 0.2 * std::cos(a)));
+  }
+  rounded.push_back(geo::to_point(10, 20));
+  rounded.push_back(geo::to_point(0, 20));
+  const size_t r = choose_seam(rounded, seam_mode(schema::Seam::SharpestCorner), {});
+  CHECK(r >= 3);
+  CHECK(r <= 11);
+  // A circle turns by a few degrees per half millimetre: aligned's seam.
+  const geo::Ring c = circle_mm(5, 5, 10, 200);
+  CHECK(choose_seam(c, seam_mode(schema::Seam::SharpestCorner), {}) == choose_seam(c, schema::Seam::Aligned, {}));
+}
+
+TEST_CASE("seams: point starts at the vertex nearest the point, wherever the nozzle is") {
+  geo::Ring sq{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(10, 10), geo::to_point(0, 10)};
+  SeamOptions o = seam_mode(schema::Seam::Point);
+  o.toward = geo::to_point(11, -1);
+  CHECK(choose_seam(sq, o, geo::to_point(0, 10)) == 1);
+  o.toward = geo::to_point(-50, 6);
+  CHECK(choose_seam(sq, o, geo::to_point(10, 0)) == 3);
+  const geo::Ring c = circle_mm(0, 0, 10, 100);
+  o.toward = geo::to_point(0, -40);
+  CHECK(choose_seam(c, o, {}) == 75);
 }
 
 TEST_CASE("chain: nearest end first, reversing paths when their far end is closer") {

@@ -121,7 +121,7 @@ TEST_CASE("--set: clear errors for unknown keys, bad units and out-of-range valu
   CHECK(err("layer_height", "5").find("outside the range") != std::string::npos);
   CHECK(err("infill_density", "20").find("20%") != std::string::npos);
   CHECK(err("perimeters", "2.5").find("whole number") != std::string::npos);
-  CHECK(err("seam", "random").find("aligned, nearest, rear") != std::string::npos);
+  CHECK(err("seam", "sharpest").find("aligned, nearest, rear, random, sharpest_corner, point") != std::string::npos);
   CHECK(err("relative_e", "yes").find("true or false") != std::string::npos);
   CHECK(err("speed", "fast").find("needs a number") != std::string::npos);
   CHECK(err("speed", "").find("missing value") != std::string::npos);
