@@ -95,6 +95,9 @@ enum class PrintOrder : uint8_t { Layers, Sequential };
 enum class Thumbnails : uint8_t { None, Png, Qoi };
 enum class Support : uint8_t { None, Normal, Tree };
 enum class SupportPattern : uint8_t { Lines, Grid };
+enum class InfillPattern : uint8_t {
+  Zigzag, Grid, Triangles, Cubic, Gyroid, Honeycomb, Concentric, Lightning
+};
 
 struct FieldInfo {
   FieldId id;

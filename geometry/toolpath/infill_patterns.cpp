@@ -1,0 +1,453 @@
+#include "geometry/toolpath/infill_patterns.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <unordered_map>
+
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/zigzag_ring.h"
+
+namespace tranche::toolpath {
+
+using geo::coord_t;
+using schema::Border;
+using schema::InfillPattern;
+using zigzag_detail::End;
+using zigzag_detail::Poly;
+using zigzag_detail::Ring2;
+using zigzag_detail::UV;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Average length of the gyroid's horizontal section per unit area, times its period (measured
+// over 32 heights of one period: 2.451; PrusaSlicer's FillGyroid uses 2.44).
+constexpr double kGyroidLength = 2.45;
+
+geo::Point to_pt(double x, double y) {
+  return geo::Point(static_cast<coord_t>(std::llround(x)), static_cast<coord_t>(std::llround(y)));
+}
+
+// Lines of a pattern in its own frame (u along the pattern's angle, v across, mm), turned into
+// bed units at the end.
+class Frame {
+ public:
+  Frame(double angle_deg, double x0, double y0, double x1, double y1)
+      : c_(std::cos(angle_deg * kPi / 180)), s_(std::sin(angle_deg * kPi / 180)) {
+    for (double x : {x0, x1})
+      for (double y : {y0, y1}) {
+        const double u = x * c_ + y * s_, v = -x * s_ + y * c_;
+        u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+      }
+  }
+  geo::Point bed(double u, double v) const {
+    return to_pt((u * c_ - v * s_) * geo::kUnitsPerMm, (u * s_ + v * c_) * geo::kUnitsPerMm);
+  }
+  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;  // the box's extent in the frame (mm)
+
+ private:
+  double c_, s_;
+};
+
+// Straight lines at `dir_deg` (from +x), `pitch` apart, through the points whose distance across
+// them is offset + k·pitch, covering the box; consecutive lines run opposite ways.
+void line_family(geo::Rings& out, double dir_deg, double pitch, double offset, double x0, double y0, double x1,
+                 double y1) {
+  Frame f(dir_deg, x0, y0, x1, y1);
+  const double k0 = std::ceil((f.v0 - offset) / pitch), k1 = std::floor((f.v1 - offset) / pitch);
+  for (double k = k0; k <= k1; k += 1) {
+    const double v = offset + k * pitch;
+    const bool back = static_cast<long long>(k) % 2 != 0;
+    geo::Point a = f.bed(back ? f.u1 : f.u0, v), b = f.bed(back ? f.u0 : f.u1, v);
+    out.push_back({a, b});
+  }
+}
+
+// Trapezoid waves drawing flat-topped hexagons of side `a` (mm), plateaus of neighbouring waves
+// `gap` apart (one bead: the shared edges printed twice side by side).
+void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, double y0, double x1, double y1) {
+  Frame f(angle, x0, y0, x1, y1);
+  const double h = a * std::sqrt(3.0) / 2, period = 3 * a;
+  const double lo = std::min(0.5 * gap, 0.45 * h), hi = h - lo;  // plateau heights within a wave
+  const double j0 = std::floor(f.v0 / h) - 1, j1 = std::ceil(f.v1 / h);
+  const double n0 = std::floor(f.u0 / period) - 1, n1 = std::ceil(f.u1 / period) + 1;
+  for (double j = j0; j <= j1; j += 1) {
+    const double base = j * h;
+    const double shift = static_cast<long long>(j) % 2 == 0 ? 0.0 : 1.5 * a;  // odd waves mirrored
+    geo::Ring w;
+    for (double n = n0; n <= n1; n += 1) {
+      const double u = n * period + shift;
+      w.push_back(f.bed(u, base + lo));
+      w.push_back(f.bed(u + a, base + lo));
+      w.push_back(f.bed(u + 1.5 * a, base + hi));
+      w.push_back(f.bed(u + 2.5 * a, base + hi));
+    }
+    if (static_cast<long long>(j) % 2 != 0) std::reverse(w.begin(), w.end());
+    out.push_back(std::move(w));
+  }
+}
+
+// One branch of the gyroid's section at height gz (radians): the coordinate solved for, t, as a
+// function of the other one, s (radians), on family `fam` (0 or 1). With |cos gz| ≥ |sin gz|
+// it solves sin s cos t + sin t cos gz + sin gz cos s = 0 for t (always solvable then), else
+// the same equation with s and t swapped, for s: each curve is then a graph over the free
+// coordinate, defined everywhere.
+struct GyroidBranch {
+  double gz;
+  bool swap;
+  int fam;
+  double operator()(double s) const {
+    const double cz = std::cos(gz), sz = std::sin(gz);
+    double A, B, C;  // A sin t + B cos t = C
+    if (!swap) {     // sin s cos t + cos gz sin t = −sin gz cos s
+      A = cz, B = std::sin(s), C = -sz * std::cos(s);
+    } else {  // cos s sin t + sin gz cos t = −sin s cos gz  (t: x, s: y)
+      A = std::cos(s), B = sz, C = -std::sin(s) * cz;
+    }
+    const double R = std::hypot(A, B), phi = std::atan2(B, A);  // A sin t + B cos t = R sin(t + φ)
+    const double q = std::asin(std::clamp(C / R, -1.0, 1.0));
+    return (fam == 0 ? q : kPi - q) - phi;
+  }
+};
+
+// The gyroid's section, period `period` mm, at height z (mm), in the frame at `angle`.
+void gyroid(geo::Rings& out, double angle, double period, double z, double x0, double y0, double x1, double y1) {
+  Frame f(angle, x0, y0, x1, y1);
+  const double w = 2 * kPi / period, gz = w * z;
+  const bool swap = std::abs(std::cos(gz)) < std::abs(std::sin(gz));
+  // Free coordinate s runs along u (curves t = v(u)) or, swapped, along v (curves u(v)).
+  const double s0 = (swap ? f.v0 : f.u0) * w, s1 = (swap ? f.v1 : f.u1) * w;
+  const double t0 = (swap ? f.u0 : f.v0) * w, t1 = (swap ? f.u1 : f.v1) * w;
+  const double tol = 0.005 * w;  // 5 µm, in radians
+  auto add = [&](geo::Ring& ring, double s, double t) {
+    ring.push_back(swap ? f.bed(t / w, s / w) : f.bed(s / w, t / w));
+  };
+  const double step = kPi / 8;
+  const double k0 = std::floor(t0 / (2 * kPi)) - 1, k1 = std::ceil(t1 / (2 * kPi)) + 1;
+  for (int fam = 0; fam < 2; ++fam) {
+    GyroidBranch g{gz, swap, fam};
+    // The branch once, unwrapped (continuous), then copied for every period across.
+    std::vector<std::pair<double, double>> pts;
+    auto unwrap = [](double t, double near) { return t + 2 * kPi * std::round((near - t) / (2 * kPi)); };
+    double s = s0 - step, t = g(s);
+    pts.push_back({s, t});
+    // Refines the piece from (sa, ta) to (sb, tb) until its middle lies within tol of the chord.
+    auto refine = [&](auto&& self, double sa, double ta, double sb, double tb, int depth) -> void {
+      const double sm = 0.5 * (sa + sb), tm = unwrap(g(sm), 0.5 * (ta + tb));
+      const double dev = std::abs(tm - 0.5 * (ta + tb)) * (sb - sa) / std::hypot(sb - sa, tb - ta);
+      if (depth < 12 && dev > tol) {
+        self(self, sa, ta, sm, tm, depth + 1);
+        self(self, sm, tm, sb, tb, depth + 1);
+      } else {
+        pts.push_back({sb, tb});
+      }
+    };
+    while (s < s1 + step) {
+      const double sn = s + step, tn = unwrap(g(sn), t);
+      refine(refine, s, t, sn, tn, 0);
+      s = sn, t = tn;
+    }
+    // The branch starts near t(s0); copies 2π apart cover [t0, t1] (its swing is within ±π).
+    const double base = pts.front().second;
+    for (double k = k0 - 1; k <= k1 + 1; k += 1) {
+      const double dt = 2 * kPi * k - 2 * kPi * std::floor(base / (2 * kPi));
+      geo::Ring ring;
+      for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
+      out.push_back(std::move(ring));
+    }
+  }
+}
+
+// The nearest ring edge to a point, over a hash grid of the rings' edges.
+class EdgeIndex {
+ public:
+  EdgeIndex(const std::vector<Ring2>& rings, double reach) : rings_(rings), reach_(reach) {
+    for (uint32_t r = 0; r < rings.size(); ++r) {
+      const auto& p = rings[r].pts;
+      for (uint32_t i = 0; i < p.size(); ++i) {
+        const UV &a = p[i], &b = p[(i + 1) % p.size()];
+        const long long cx0 = cell(std::min(a.u, b.u) - reach), cx1 = cell(std::max(a.u, b.u) + reach);
+        const long long cy0 = cell(std::min(a.v, b.v) - reach), cy1 = cell(std::max(a.v, b.v) + reach);
+        for (long long x = cx0; x <= cx1; ++x)
+          for (long long y = cy0; y <= cy1; ++y) cells_[key(x, y)].push_back({r, i});
+      }
+    }
+  }
+  // The edge within `reach` nearest to p; false when none.
+  bool nearest(UV p, uint32_t& ring, uint32_t& edge, double& dist) const {
+    auto it = cells_.find(key(cell(p.u), cell(p.v)));
+    if (it == cells_.end()) return false;
+    dist = reach_;
+    bool found = false;
+    for (const auto& [r, i] : it->second) {
+      const auto& pts = rings_[r].pts;
+      const double d = distance(p, pts[i], pts[(i + 1) % pts.size()]);
+      if (d <= dist) dist = d, ring = r, edge = i, found = true;
+    }
+    return found;
+  }
+  static double distance(UV p, UV a, UV b) {
+    const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
+    const double t = l2 > 0 ? std::clamp(((p.u - a.u) * du + (p.v - a.v) * dv) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(p.u - a.u - t * du, p.v - a.v - t * dv);
+  }
+
+ private:
+  static constexpr double kCell = 1e6;  // 1 mm
+  static long long cell(double x) { return static_cast<long long>(std::floor(x / kCell)); }
+  static uint64_t key(long long x, long long y) {
+    return (static_cast<uint64_t>(x) << 32) ^ (static_cast<uint64_t>(y) & 0xffffffffu);
+  }
+  const std::vector<Ring2>& rings_;
+  double reach_;
+  std::unordered_map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells_;
+};
+
+std::vector<Ring2> to_ring2(const geo::Rings& rings) {
+  std::vector<Ring2> out;
+  for (const auto& r : rings) {
+    Ring2 q;
+    for (const auto& p : r) q.pts.push_back({static_cast<double>(p.X), static_cast<double>(p.Y)});
+    q.kinds.assign(q.pts.size(), geo::EdgeKind::Real);
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
+// The region the lines are clipped to: the shape less a band `inset` wide along its artificial
+// edges; each of its edges is artificial when it runs along such a band.
+std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& rings) {
+  geo::Rings cuts;  // runs of artificial edges as open polylines
+  for (size_t r = 0; r < shape.rings.size(); ++r) {
+    const auto& ring = shape.rings[r];
+    const size_t n = ring.size();
+    if (r >= shape.kinds.size() || n < 3) continue;
+    for (size_t i = 0; i < n; ++i)
+      if (shape.kinds[r][i] == geo::EdgeKind::Artificial) cuts.push_back({ring[i], ring[(i + 1) % n]});
+  }
+  rings = union_of(shape.rings);
+  if (cuts.empty() || inset <= 0) return to_ring2(rings);
+  geo::Rings band;
+  ClipperLib::ClipperOffset co(2.0, 5000);
+  co.AddPaths(cuts, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  co.Execute(band, inset);
+  rings = difference(rings, band);
+  std::vector<Ring2> out = to_ring2(rings);
+  const std::vector<Ring2> cut2 = to_ring2(cuts);
+  EdgeIndex near_cut(cut2, inset + 2e4);
+  for (auto& q : out)
+    for (size_t i = 0; i < q.pts.size(); ++i) {
+      const UV &a = q.pts[i], &b = q.pts[(i + 1) % q.pts.size()];
+      uint32_t rr, ee;
+      double d;
+      if (near_cut.nearest({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, rr, ee, d) && d <= inset + 1e4)
+        q.kinds[i] = geo::EdgeKind::Artificial;
+    }
+  return out;
+}
+
+// Open polylines to paths along the border: clipped to the region, each end put on its ring
+// edge, joined by links along the border, merged points dropped.
+std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& shape, const PatternSpec& spec,
+                                    double pitch_mm) {
+  geo::Rings region;
+  const std::vector<Ring2> rings = clip_rings(shape, spec.artificial_inset_mm * geo::kUnitsPerMm, region);
+  if (region.empty()) return {};
+  ClipperLib::Clipper c;
+  c.AddPaths(lines, ClipperLib::ptSubject, false);
+  c.AddPaths(region, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  geo::Rings pieces;
+  ClipperLib::OpenPathsFromPolyTree(tree, pieces);
+  EdgeIndex index(rings, 2e4);  // ends within 20 µm of an edge lie on it
+  uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
+  auto end_of = [&](const geo::Point& p) {
+    End e{0, 0, {static_cast<double>(p.X), static_cast<double>(p.Y)}};
+    double d;
+    if (!index.nearest(e.p, e.ring, e.edge, d)) e.ring = lone++;
+    return e;
+  };
+  std::vector<Poly> polys;
+  for (const auto& piece : pieces) {
+    if (piece.size() < 2) continue;
+    Poly P;
+    double len = 0;
+    for (size_t i = 0; i < piece.size(); ++i) {
+      P.pts.push_back({static_cast<double>(piece[i].X), static_cast<double>(piece[i].Y)});
+      if (i > 0) {
+        P.border.push_back(Border::None);
+        len += std::hypot(P.pts[i].u - P.pts[i - 1].u, P.pts[i].v - P.pts[i - 1].v);
+      }
+    }
+    if (len < 1e3) continue;  // a micrometre: a line grazing a corner
+    P.first = end_of(piece.front());
+    P.last = end_of(piece.back());
+    P.area = len * pitch_mm * geo::kUnitsPerMm;
+    polys.push_back(std::move(P));
+  }
+  polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
+  std::vector<FillPath> out;
+  for (const Poly& P : polys) {
+    FillPath fp;
+    for (size_t k = 0; k < P.pts.size(); ++k) {
+      const geo::Point q = to_pt(P.pts[k].u, P.pts[k].v);
+      if (!fp.pts.empty()) {
+        if (fp.pts.back() == q) continue;
+        fp.border.push_back(P.border[k - 1]);
+      }
+      fp.pts.push_back(q);
+    }
+    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
+    fp.runs = P.runs;
+    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
+  }
+  return out;
+}
+
+// The point of ring r nearest to p: inserted as a vertex, the ring turned to start there.
+geo::Ring start_nearest(const geo::Ring& r, const geo::Point& p) {
+  double best = 1e300;
+  size_t at = 0;
+  geo::Point q = r[0];
+  for (size_t i = 0; i < r.size(); ++i) {
+    const UV a{static_cast<double>(r[i].X), static_cast<double>(r[i].Y)};
+    const UV b{static_cast<double>(r[(i + 1) % r.size()].X), static_cast<double>(r[(i + 1) % r.size()].Y)};
+    const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
+    const double pu = static_cast<double>(p.X), pv = static_cast<double>(p.Y);
+    const double t = l2 > 0 ? std::clamp(((pu - a.u) * du + (pv - a.v) * dv) / l2, 0.0, 1.0) : 0.0;
+    const double d = std::hypot(pu - a.u - t * du, pv - a.v - t * dv);
+    if (d < best) best = d, at = i, q = to_pt(a.u + t * du, a.v + t * dv);
+  }
+  geo::Ring out{q};
+  for (size_t k = 1; k <= r.size(); ++k) {
+    const geo::Point& v = r[(at + k) % r.size()];
+    if (v != out.back()) out.push_back(v);
+  }
+  if (out.back() != q) out.push_back(q);  // closed: back to the start
+  return out;
+}
+
+// Concentric loops, outermost first, each joined to the next when the crossing is short and
+// stays inside the region.
+std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, double pitch_mm) {
+  const geo::Rings region = union_of(shape.rings);
+  if (region.empty()) return {};
+  const EdgeGrid border(region);
+  std::vector<FillPath> out;
+  const double first = 0.5 * pitch_mm;  // each loop stands for the band pitch_mm wide round it
+  for (int k = 0; k < 100000; ++k) {
+    // The border of the region shrunk by the loop's distance, less the parts of it narrower than
+    // a bead (whose border would run back over itself).
+    geo::Rings loops = offset_open(region, -(first + k * pitch_mm), 0.5 * spacing_mm);
+    if (loops.empty()) break;
+    std::stable_sort(loops.begin(), loops.end(),
+                     [](const geo::Ring& a, const geo::Ring& b) { return ClipperLib::Area(a) > ClipperLib::Area(b); });
+    for (const geo::Ring& r : loops) {
+      if (r.size() < 3) continue;
+      // The path whose end is nearest, if the crossing to this loop is short and inside.
+      FillPath* join = nullptr;
+      geo::Ring loop;
+      double best = 1.5 * pitch_mm * geo::kUnitsPerMm;
+      for (FillPath& fp : out) {
+        geo::Ring cand = start_nearest(r, fp.pts.back());
+        const double d = std::hypot(static_cast<double>(cand[0].X - fp.pts.back().X),
+                                    static_cast<double>(cand[0].Y - fp.pts.back().Y));
+        if (d <= best && !border.crosses(fp.pts.back(), cand[0])) best = d, join = &fp, loop = std::move(cand);
+      }
+      if (!join) {
+        out.push_back({});
+        join = &out.back();
+        loop = start_nearest(r, r[0]);
+      }
+      double len = 0;
+      for (size_t i = 0; i < loop.size(); ++i) {
+        if (!join->pts.empty()) {
+          if (join->pts.back() == loop[i]) continue;
+          join->border.push_back(Border::None);
+          len += std::hypot(static_cast<double>(loop[i].X - join->pts.back().X),
+                            static_cast<double>(loop[i].Y - join->pts.back().Y));
+        }
+        join->pts.push_back(loop[i]);
+      }
+      join->area_mm2 += len * geo::kMmPerUnit * pitch_mm;
+    }
+  }
+  std::erase_if(out, [](const FillPath& fp) { return fp.pts.size() < 2; });
+  return out;
+}
+
+}  // namespace
+
+geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x1, double y1) {
+  geo::Rings out;
+  const double s = spec.spacing_mm, rho = spec.density;
+  if (!(rho > 0 && s > 0)) return out;
+  double angle = std::fmod(spec.angle_deg, 90.0);
+  if (angle < 0) angle += 90;
+  switch (spec.pattern) {
+    case InfillPattern::Grid:
+      for (double a : {0.0, 90.0}) line_family(out, angle + a, 2 * s / rho, 0, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Triangles:
+      for (double a : {0.0, 60.0, 120.0}) line_family(out, angle + a, 3 * s / rho, 0, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Cubic: {
+      // The three face directions of cubes standing on a corner cut the plane z in lines that
+      // move across by z/√2 as z rises; the horizontal parts of the faces' normals sum to zero,
+      // so with the normals at +90°, +150°, +210° of the lines the middle set moves the other way.
+      const double pitch = 3 * s / rho, shift = spec.z_mm / std::sqrt(2.0);
+      const double shifts[3] = {shift, -shift, shift};
+      for (int i = 0; i < 3; ++i)
+        line_family(out, angle + 60.0 * i, pitch, std::fmod(shifts[i], pitch), x0, y0, x1, y1);
+      break;
+    }
+    case InfillPattern::Honeycomb:
+      honeycomb(out, angle, 8 * s / (3 * std::sqrt(3.0) * rho), s, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Gyroid:
+      gyroid(out, angle, kGyroidLength * s / rho, spec.z_mm, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Zigzag:
+    case InfillPattern::Concentric:
+    case InfillPattern::Lightning:
+      break;
+  }
+  return out;
+}
+
+std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec) {
+  if (!(spec.density > 0 && spec.spacing_mm > 0) || shape.rings.empty()) return {};
+  const double pitch = spec.spacing_mm / std::min(spec.density, 1.0);  // area per length of line
+  if (spec.pattern == InfillPattern::Concentric) return concentric(shape, spec.spacing_mm, pitch);
+  const geo::BBox2 b = bbox(shape.rings);
+  if (b.empty()) return {};
+  const double m = 1.0;  // mm of margin: every line crosses the whole region
+  const geo::Rings lines = pattern_lines(spec, geo::to_mm(b.min_x) - m, geo::to_mm(b.min_y) - m,
+                                         geo::to_mm(b.max_x) + m, geo::to_mm(b.max_y) + m);
+  if (lines.empty()) return {};
+  return clip_and_link(lines, shape, spec, pitch);
+}
+
+geo::Rings lightning_region(Neighbours& nb, int top_layers, double step_mm) {
+  geo::Rings out;
+  const int T = std::max(top_layers, 0);
+  for (int k = 1; k < 100000; ++k) {
+    // Material on the T + k − 1 layers above (this layer's own when that is none).
+    const geo::Rings& over = T + k - 1 == 0 ? nb.layer(0) : nb.all_above(T + k - 1);
+    if (over.empty()) break;
+    const geo::BBox2 b = bbox(over);
+    const double shrink = (k - 1) * step_mm;
+    if (2 * shrink > geo::to_mm(std::min(b.max_x - b.min_x, b.max_y - b.min_y))) break;
+    geo::Rings skin = difference(over, nb.all_above(T + k));  // the lowest solid layer is k up
+    if (skin.empty()) continue;
+    if (shrink > 0) skin = offset(skin, -shrink);
+    if (!skin.empty()) out = union_of(out, skin);
+  }
+  return out;
+}
+
+}  // namespace tranche::toolpath
