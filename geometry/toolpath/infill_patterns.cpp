@@ -121,7 +121,7 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
   // Free coordinate s runs along u (curves t = v(u)) or, swapped, along v (curves u(v)).
   const double s0 = (swap ? f.v0 : f.u0) * w, s1 = (swap ? f.v1 : f.u1) * w;
   const double t0 = (swap ? f.u0 : f.v0) * w, t1 = (swap ? f.u1 : f.v1) * w;
-  const double tol = 0.005 * w;  // 5 µm, in radians
+  const double tol = 0.01 * w;  // 10 µm, in radians
   auto add = [&](geo::Ring& ring, double s, double t) {
     ring.push_back(swap ? f.bed(t / w, s / w) : f.bed(s / w, t / w));
   };
@@ -249,6 +249,70 @@ std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& 
   return out;
 }
 
+// Open polylines cut into the pieces inside `region` (its edge grid `grid`): each piece's ends
+// lie on the ring edges the polyline crosses there (or on none, for a polyline that starts or
+// ends inside). Between two crossings a piece is in or out by the middle of the stretch (exact
+// even-odd test), so a polyline through a vertex or along an edge is cut right as well.
+std::vector<Poly> clip_lines(const geo::Rings& lines, const EdgeGrid& grid, uint32_t& lone, double pitch_units) {
+  std::vector<Poly> polys;
+  auto at = [](const geo::Point& a, const geo::Point& b, double t) {
+    return UV{static_cast<double>(a.X) + t * static_cast<double>(b.X - a.X),
+              static_cast<double>(a.Y) + t * static_cast<double>(b.Y - a.Y)};
+  };
+  for (const geo::Ring& line : lines) {
+    if (line.size() < 2) continue;
+    bool in = grid.inside(line[0]);
+    Poly cur;
+    double len = 0;
+    auto add = [&](UV p) {
+      if (!cur.pts.empty()) {
+        len += std::hypot(p.u - cur.pts.back().u, p.v - cur.pts.back().v);
+        cur.border.push_back(Border::None);
+      }
+      cur.pts.push_back(p);
+    };
+    auto close = [&](End e) {
+      e.p = cur.pts.back();
+      cur.last = e;
+      if (cur.pts.size() >= 2 && len >= 1e3) {  // a micrometre: a line grazing a corner
+        cur.area = len * pitch_units;
+        polys.push_back(std::move(cur));
+      }
+      cur = Poly{};
+      len = 0;
+    };
+    if (in) {
+      add({static_cast<double>(line[0].X), static_cast<double>(line[0].Y)});
+      cur.first = End{lone++, 0, cur.pts[0]};
+    }
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const geo::Point &a = line[i], &b = line[i + 1];
+      if (a == b) continue;
+      const std::vector<EdgeGrid::Hit> hs = grid.hits(a, b);
+      for (size_t h = 0; h < hs.size(); ++h) {
+        const double t = hs[h].t, next = h + 1 < hs.size() ? hs[h + 1].t : 1.0;
+        if (next - t < 1e-12 && h + 1 < hs.size()) continue;  // a vertex: decided by the next hit
+        const UV mid = at(a, b, 0.5 * (t + next));
+        const bool after = grid.inside(geo::Point(static_cast<coord_t>(std::llround(mid.u)),
+                                                  static_cast<coord_t>(std::llround(mid.v))));
+        if (after == in) continue;
+        const UV p = at(a, b, t);
+        if (in) {
+          add(p);
+          close(End{hs[h].ring, hs[h].edge, p});
+        } else {
+          add(p);
+          cur.first = End{hs[h].ring, hs[h].edge, p};
+        }
+        in = after;
+      }
+      if (in) add({static_cast<double>(b.X), static_cast<double>(b.Y)});
+    }
+    if (in && !cur.pts.empty()) close(End{lone++, 0, cur.pts.back()});
+  }
+  return polys;
+}
+
 // Open polylines to paths along the border: clipped to the region, each end put on its ring
 // edge, joined by links along the border, merged points dropped.
 std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& shape, const PatternSpec& spec,
@@ -256,39 +320,9 @@ std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& sh
   geo::Rings region;
   const std::vector<Ring2> rings = clip_rings(shape, spec.artificial_inset_mm * geo::kUnitsPerMm, region);
   if (region.empty()) return {};
-  ClipperLib::Clipper c;
-  c.AddPaths(lines, ClipperLib::ptSubject, false);
-  c.AddPaths(region, ClipperLib::ptClip, true);
-  ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  geo::Rings pieces;
-  ClipperLib::OpenPathsFromPolyTree(tree, pieces);
-  EdgeIndex index(rings, 2e4);  // ends within 20 µm of an edge lie on it
+  const EdgeGrid grid(region);
   uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
-  auto end_of = [&](const geo::Point& p) {
-    End e{0, 0, {static_cast<double>(p.X), static_cast<double>(p.Y)}};
-    double d;
-    if (!index.nearest(e.p, e.ring, e.edge, d)) e.ring = lone++;
-    return e;
-  };
-  std::vector<Poly> polys;
-  for (const auto& piece : pieces) {
-    if (piece.size() < 2) continue;
-    Poly P;
-    double len = 0;
-    for (size_t i = 0; i < piece.size(); ++i) {
-      P.pts.push_back({static_cast<double>(piece[i].X), static_cast<double>(piece[i].Y)});
-      if (i > 0) {
-        P.border.push_back(Border::None);
-        len += std::hypot(P.pts[i].u - P.pts[i - 1].u, P.pts[i].v - P.pts[i - 1].v);
-      }
-    }
-    if (len < 1e3) continue;  // a micrometre: a line grazing a corner
-    P.first = end_of(piece.front());
-    P.last = end_of(piece.back());
-    P.area = len * pitch_mm * geo::kUnitsPerMm;
-    polys.push_back(std::move(P));
-  }
+  std::vector<Poly> polys = clip_lines(lines, grid, lone, pitch_mm * geo::kUnitsPerMm);
   polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
   std::vector<FillPath> out;
   for (const Poly& P : polys) {
@@ -339,10 +373,15 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   const EdgeGrid border(region);
   std::vector<FillPath> out;
   const double first = 0.5 * pitch_mm;  // each loop stands for the band pitch_mm wide round it
-  for (int k = 0; k < 100000; ++k) {
+  // Shrunk a pitch further for each loop (erosions by discs add up), each step from a copy
+  // simplified to 10 µm: a finely tessellated curve shrunk by many times its edges' length would
+  // make every offset edge cross its neighbours'.
+  constexpr geo::coord_t kTol = 10000;
+  geo::Rings inner = offset(simplify(region, kTol), -first);
+  for (int k = 0; k < 100000 && !inner.empty(); ++k, inner = offset(simplify(inner, kTol), -pitch_mm)) {
     // The border of the region shrunk by the loop's distance, less the parts of it narrower than
     // a bead (whose border would run back over itself).
-    geo::Rings loops = offset_open(region, -(first + k * pitch_mm), 0.5 * spacing_mm);
+    geo::Rings loops = offset_open(inner, 0, 0.5 * spacing_mm);
     if (loops.empty()) break;
     std::stable_sort(loops.begin(), loops.end(),
                      [](const geo::Ring& a, const geo::Ring& b) { return ClipperLib::Area(a) > ClipperLib::Area(b); });
@@ -436,14 +475,21 @@ geo::Rings lightning_region(Neighbours& nb, int top_layers, double step_mm) {
   geo::Rings out;
   const int T = std::max(top_layers, 0);
   for (int k = 1; k < 100000; ++k) {
-    // Material on the T + k − 1 layers above (this layer's own when that is none).
-    const geo::Rings& over = T + k - 1 == 0 ? nb.layer(0) : nb.all_above(T + k - 1);
+    // Material on the T + k − 1 layers above (this layer's own when that is none). A copy:
+    // all_above(T + k) below may grow the cache the reference would point into.
+    const geo::Rings over = T + k - 1 == 0 ? nb.layer(0) : nb.all_above(T + k - 1);
     if (over.empty()) break;
     const geo::BBox2 b = bbox(over);
     const double shrink = (k - 1) * step_mm;
     if (2 * shrink > geo::to_mm(std::min(b.max_x - b.min_x, b.max_y - b.min_y))) break;
-    geo::Rings skin = difference(over, nb.all_above(T + k));  // the lowest solid layer is k up
+    const geo::Rings& next = nb.all_above(T + k);
+    // Where the lowest solid layer is k up: none when one more layer covers as much (the usual
+    // case: most layers above are not under a top, and areas are cheaper than a boolean).
+    if (std::abs(area_mm2(next) - area_mm2(over)) < 1e-9) continue;
+    geo::Rings skin = difference(over, next);
     if (skin.empty()) continue;
+    const geo::BBox2 sb = bbox(skin);
+    if (2 * shrink >= geo::to_mm(std::min(sb.max_x - sb.min_x, sb.max_y - sb.min_y))) continue;  // shrunk away
     if (shrink > 0) skin = offset(skin, -shrink);
     if (!skin.empty()) out = union_of(out, skin);
   }

@@ -244,3 +244,15 @@ TEST_CASE("lightning: a small top over a wide part needs only a small cone") {
   const double tower = 6 - 2 * 10 * 0.168;
   CHECK(a == doctest::Approx(1600 - 36 + tower * tower).epsilon(0.002));
 }
+
+// Regression: lightning_region held a reference into Neighbours' cache of all_above() while
+// asking it for one layer more, which may move the cache (a crash on PrusaSlicer's bunny; a
+// sanitizer build, TRANCHE_SANITIZE, sees it on this stack). 120 layers, 3 of them solid under
+// the top: layer 0 is 117 layers under the lowest solid one, its cone shrunk by 116 steps.
+TEST_CASE("lightning: a tall stack, the cone from its top down to the bed") {
+  const double h = 0.2, step = 0.05;
+  const auto layers = test::stack(120, h, geo::Polygon{test::rect(0, 0, 30, 30), {}});
+  Neighbours nb(layers, 0);
+  const double side = 30 - 2 * 116 * step;
+  CHECK(area_mm2(lightning_region(nb, 3, step)) == doctest::Approx(side * side).epsilon(0.01));
+}
