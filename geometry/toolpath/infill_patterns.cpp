@@ -372,7 +372,10 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   if (region.empty()) return {};
   const EdgeGrid border(region);
   std::vector<FillPath> out;
-  const double first = 0.5 * pitch_mm;  // each loop stands for the band pitch_mm wide round it
+  // The first loop half a bead inside the border, touching the walls (as PrusaSlicer's and
+  // Cura's concentric infill), the others pitch_mm apart: a narrow region still gets a loop, and
+  // the region gets (pitch − spacing) / 2 × its border's length of bead more than the density's.
+  const double first = 0.5 * spacing_mm;
   // Shrunk a pitch further for each loop (erosions by discs add up), each step from a copy
   // simplified to 10 µm: a finely tessellated curve shrunk by many times its edges' length would
   // make every offset edge cross its neighbours'.

@@ -74,7 +74,11 @@ TEST_CASE("infill patterns: extruded area on a 20 mm square is density × area")
       auto lines = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), unlinked);
       const double extruded = length_mm(lines) * kSpacing;
       CHECK(extruded > 0.88 * density * whole);
-      CHECK(extruded < 1.12 * density * whole);
+      // Concentric: its first loop touches the border (half a spacing inside it), which adds
+      // (pitch − spacing) / 2 of band along the border: 4·side·(pitch − spacing)/2 of area.
+      const double pitch = kSpacing / density;
+      const double extra = p == InfillPattern::Concentric ? 4 * side * 0.5 * (pitch - kSpacing) * density : 0.0;
+      CHECK(extruded < 1.12 * density * whole + extra);
       auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(p, density));
       const double linked = length_mm(fps) * kSpacing;
       CHECK(linked >= extruded - 1e-6);
@@ -189,23 +193,23 @@ TEST_CASE("infill patterns: concentric loops follow the border inward") {
   const geo::Rings sq{test::rect(0, 0, 20, 20)};
   auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
   REQUIRE(!fps.empty());
-  // The first point is on the outermost loop, half a pitch (2.25 mm at 20 %) inside the border.
+  // The first point is on the outermost loop, half a spacing inside the border.
   const auto& p = fps[0].pts[0];
   const double d = std::min({geo::to_mm(p.X), geo::to_mm(p.Y), 20 - geo::to_mm(p.X), 20 - geo::to_mm(p.Y)});
-  CHECK(d == doctest::Approx(0.5 * 2.25).epsilon(0.02));
-  // Loops 2.25 mm apart on a 20 mm square: 4 of them (at 1.125, 3.375, 5.625 and 7.875 mm from
-  // the border), joined into one path by three crossings.
+  CHECK(d == doctest::Approx(0.5 * kSpacing).epsilon(0.02));
+  // Loops 2.25 mm apart on a 20 mm square, at 0.225, 2.475, 4.725, 6.975 and 9.225 mm from the
+  // border (the last one 1.55 mm wide), joined into one path by four crossings.
   CHECK(fps.size() == 1);
   // No point nearer the border than the outermost loop; a few on it (its sides).
   int outer = 0;
   for (const auto& q : fps[0].pts) {
     const double x = geo::to_mm(q.X), y = geo::to_mm(q.Y);
     const double e = std::min({x, 20 - x, y, 20 - y});
-    CHECK(e >= 1.125 - 0.01);
-    if (e < 1.125 + 0.01) ++outer;
+    CHECK(e >= 0.225 - 0.01);
+    if (e < 0.225 + 0.01) ++outer;
   }
   CHECK(outer >= 4);
-  CHECK(length_mm(fps) == doctest::Approx(4 * (17.75 + 13.25 + 8.75 + 4.25) + 3 * 2.25).epsilon(0.02));
+  CHECK(length_mm(fps) == doctest::Approx(4 * (19.55 + 15.05 + 10.55 + 6.05 + 1.55) + 4 * 2.25).epsilon(0.02));
 }
 
 TEST_CASE("lightning: the region under a top, carried down as a shrinking cone") {
