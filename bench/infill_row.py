@@ -78,8 +78,8 @@ def table(path):
         return a / b if b > 0 else math.nan
 
     print('| model | pattern | infill mm (ours / prusa) | plastic | trips/layer (ours / prusa) | '
-          'retractions/layer (ours / prusa) | time / our zigzag |')
-    print('|---|---|---|---|---|---|---|')
+          'retractions/layer (ours / prusa) | time s (ours / prusa) | time / our zigzag |')
+    print('|---|---|---|---|---|---|---|---|')
     sums = defaultdict(list)
     for model in models:
         zig = data.get((model, 'zigzag', 'tranche'))
@@ -93,11 +93,12 @@ def table(path):
             if p:
                 play = max(p[0], 1)
                 cells += [f'{t[4]:.0f} / {p[4]:.0f}', f'{ratio(t[4], p[4]):.3f}',
-                          f'{t[1] / lay:.2f} / {p[1] / play:.2f}', f'{t[2] / lay:.2f} / {p[2] / play:.2f}']
+                          f'{t[1] / lay:.2f} / {p[1] / play:.2f}', f'{t[2] / lay:.2f} / {p[2] / play:.2f}',
+                          f'{t[5]:.2f} / {p[5]:.2f}']
                 sums[pattern].append((ratio(t[4], p[4]), ratio(t[1] / lay, p[1] / play),
                                       ratio(t[2] / lay, p[2] / play), ratio(t[5], zig[5]) if zig else math.nan))
             else:
-                cells += [f'{t[4]:.0f} / -', '-', f'{t[1] / lay:.2f} / -', f'{t[2] / lay:.2f} / -']
+                cells += [f'{t[4]:.0f} / -', '-', f'{t[1] / lay:.2f} / -', f'{t[2] / lay:.2f} / -', f'{t[5]:.2f} / -']
                 sums[pattern].append((math.nan, math.nan, math.nan, ratio(t[5], zig[5]) if zig else math.nan))
             cells.append(f'{ratio(t[5], zig[5]):.2f}' if zig else '-')
             print('| ' + ' | '.join(cells) + ' |')

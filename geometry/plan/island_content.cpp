@@ -208,14 +208,13 @@ Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<
 // A sparse region filled with a pattern other than the zig-zag (geometry/toolpath/infill_patterns):
 // each path is a cell of its own, at the island's angle (the cell stage does not turn them).
 // Lightning zig-zags only the part of the region that holds up the tops above, on the bed's
-// grid; its cones lean 40° from vertical (Cura's lightning_infill_support_angle).
+// grid (geometry/toolpath/lightning.h: computed once for all layers, shared through the setup).
 void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::InfillPattern pattern,
-                   toolpath::Neighbours& nb, double angle, double density, double height_mm) {
+                   toolpath::Neighbours& nb, double angle, double density) {
   std::vector<toolpath::FillPath> fps;
   if (pattern == schema::InfillPattern::Lightning) {
-    constexpr double kLean = 40.0 * 3.14159265358979323846 / 180.0;
-    const geo::Rings need =
-        toolpath::lightning_region(nb, static_cast<int>(ip.props[PropId::TopLayers]), height_mm * std::tan(kLean));
+    const geo::Rings& need =
+        nest.setup().lightning.region(nest.setup().layers, nb.index(), static_cast<int>(ip.props[PropId::TopLayers]));
     const geo::Rings rings = toolpath::intersection(f.region.rings, need);
     if (!rings.empty()) fps = toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), f.fs);
   } else {
@@ -256,7 +255,7 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   fill_spec(f, region.rings, angle, density);
   const auto pattern = static_cast<schema::InfillPattern>(static_cast<int>((*props)[PropId::InfillPattern]));
   if (!solid && pattern != schema::InfillPattern::Zigzag && density < 1) {
-    build_pattern(ip, nest, f, pattern, nb, angle, density, height_mm);
+    build_pattern(ip, nest, f, pattern, nb, angle, density);
     return ok_status();
   }
   // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.

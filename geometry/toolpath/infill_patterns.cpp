@@ -474,29 +474,4 @@ std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& sp
   return clip_and_link(lines, shape, spec, pitch);
 }
 
-geo::Rings lightning_region(Neighbours& nb, int top_layers, double step_mm) {
-  geo::Rings out;
-  const int T = std::max(top_layers, 0);
-  for (int k = 1; k < 100000; ++k) {
-    // Material on the T + k − 1 layers above (this layer's own when that is none). A copy:
-    // all_above(T + k) below may grow the cache the reference would point into.
-    const geo::Rings over = T + k - 1 == 0 ? nb.layer(0) : nb.all_above(T + k - 1);
-    if (over.empty()) break;
-    const geo::BBox2 b = bbox(over);
-    const double shrink = (k - 1) * step_mm;
-    if (2 * shrink > geo::to_mm(std::min(b.max_x - b.min_x, b.max_y - b.min_y))) break;
-    const geo::Rings& next = nb.all_above(T + k);
-    // Where the lowest solid layer is k up: none when one more layer covers as much (the usual
-    // case: most layers above are not under a top, and areas are cheaper than a boolean).
-    if (std::abs(area_mm2(next) - area_mm2(over)) < 1e-9) continue;
-    geo::Rings skin = difference(over, next);
-    if (skin.empty()) continue;
-    const geo::BBox2 sb = bbox(skin);
-    if (2 * shrink >= geo::to_mm(std::min(sb.max_x - sb.min_x, sb.max_y - sb.min_y))) continue;  // shrunk away
-    if (shrink > 0) skin = offset(skin, -shrink);
-    if (!skin.empty()) out = union_of(out, skin);
-  }
-  return out;
-}
-
 }  // namespace tranche::toolpath

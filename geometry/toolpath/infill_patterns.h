@@ -1,6 +1,5 @@
 // Sparse infill patterns other than the zig-zag (infill_pattern): grid, triangles, cubic,
-// gyroid, honeycomb and concentric, and the region lightning infill fills (the zig-zag of that
-// region is drawn by zigzag()). Every pattern is laid on a grid fixed to the bed so that its
+// gyroid, honeycomb and concentric (lightning: geometry/toolpath/lightning.h). Every pattern is laid on a grid fixed to the bed so that its
 // lines stand on the lines of the layer below (cubic and gyroid move with z as their 3D cells
 // do), clipped to the fill region, and its pieces are joined end to end by links along the
 // region's border (zigzag_detail::link_along_border, as the zig-zags' runs are), so that each
@@ -30,7 +29,6 @@
 
 #include <vector>
 
-#include "geometry/toolpath/relations.h"
 #include "geometry/toolpath/zigzag.h"
 #include "runtime/schema/schema.h"
 
@@ -55,14 +53,5 @@ std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& sp
 // The lines of a pattern before clipping, over the box [x0, x1] × [y0, y1] (mm): open polylines
 // in bed units. Exposed for tests.
 geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x1, double y1);
-
-// Lightning infill: the part of this layer (nb's) that holds up the tops above it. Where the
-// first solid layer above a spot is k layers up (the spot has material on top_layers + k − 1
-// layers above it but not on top_layers + k: a top skin starts there), the region under that
-// skin is kept, shrunk by (k − 1)·step_mm: each solid layer's underside is carried down as a
-// cone whose sides lean step_mm per layer (PrusaSlicer's and Cura's lightning prune their trees
-// by the same overhang angle, 40° from vertical by default). Unions of every skin above;
-// empty when nothing above needs holding up.
-geo::Rings lightning_region(Neighbours& nb, int top_layers, double step_mm);
 
 }  // namespace tranche::toolpath
