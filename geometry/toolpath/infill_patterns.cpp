@@ -126,7 +126,6 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
     ring.push_back(swap ? f.bed(t / w, s / w) : f.bed(s / w, t / w));
   };
   const double step = kPi / 8;
-  const double k0 = std::floor(t0 / (2 * kPi)) - 1, k1 = std::ceil(t1 / (2 * kPi)) + 1;
   for (int fam = 0; fam < 2; ++fam) {
     GyroidBranch g{gz, swap, fam};
     // The branch once, unwrapped (continuous), then copied for every period across.
@@ -150,10 +149,12 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
       refine(refine, s, t, sn, tn, 0);
       s = sn, t = tn;
     }
-    // The branch starts near t(s0); copies 2π apart cover [t0, t1] (its swing is within ±π).
-    const double base = pts.front().second;
-    for (double k = k0 - 1; k <= k1 + 1; k += 1) {
-      const double dt = 2 * kPi * k - 2 * kPi * std::floor(base / (2 * kPi));
+    // Copies 2π apart, those that reach [t0, t1] only.
+    double lo = 1e300, hi = -1e300;
+    for (const auto& q : pts) lo = std::min(lo, q.second), hi = std::max(hi, q.second);
+    for (double k = std::floor((t0 - hi) / (2 * kPi)); k <= std::ceil((t1 - lo) / (2 * kPi)); k += 1) {
+      const double dt = 2 * kPi * k;
+      if (hi + dt < t0 || lo + dt > t1) continue;
       geo::Ring ring;
       for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
       out.push_back(std::move(ring));
@@ -253,11 +254,17 @@ std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& 
 // lie on the ring edges the polyline crosses there (or on none, for a polyline that starts or
 // ends inside). Between two crossings a piece is in or out by the middle of the stretch (exact
 // even-odd test), so a polyline through a vertex or along an edge is cut right as well.
-std::vector<Poly> clip_lines(const geo::Rings& lines, const EdgeGrid& grid, uint32_t& lone, double pitch_units) {
+std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, const EdgeGrid& grid, uint32_t& lone,
+                             double pitch_units) {
   std::vector<Poly> polys;
   auto at = [](const geo::Point& a, const geo::Point& b, double t) {
     return UV{static_cast<double>(a.X) + t * static_cast<double>(b.X - a.X),
               static_cast<double>(a.Y) + t * static_cast<double>(b.Y - a.Y)};
+  };
+  const geo::BBox2 box = bbox(region);
+  auto outside_box = [&](const geo::Point& a, const geo::Point& b) {
+    return std::max(a.X, b.X) < box.min_x || std::min(a.X, b.X) > box.max_x || std::max(a.Y, b.Y) < box.min_y ||
+           std::min(a.Y, b.Y) > box.max_y;
   };
   for (const geo::Ring& line : lines) {
     if (line.size() < 2) continue;
@@ -288,6 +295,7 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const EdgeGrid& grid, uint
     for (size_t i = 0; i + 1 < line.size(); ++i) {
       const geo::Point &a = line[i], &b = line[i + 1];
       if (a == b) continue;
+      if (!in && outside_box(a, b)) continue;  // no crossing out there
       const std::vector<EdgeGrid::Hit> hs = grid.hits(a, b);
       for (size_t h = 0; h < hs.size(); ++h) {
         const double t = hs[h].t, next = h + 1 < hs.size() ? hs[h + 1].t : 1.0;
@@ -322,7 +330,7 @@ std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& sh
   if (region.empty()) return {};
   const EdgeGrid grid(region);
   uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
-  std::vector<Poly> polys = clip_lines(lines, grid, lone, pitch_mm * geo::kUnitsPerMm);
+  std::vector<Poly> polys = clip_lines(lines, region, grid, lone, pitch_mm * geo::kUnitsPerMm);
   polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
   std::vector<FillPath> out;
   for (const Poly& P : polys) {
@@ -394,8 +402,13 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
       FillPath* join = nullptr;
       geo::Ring loop;
       double best = 1.5 * pitch_mm * geo::kUnitsPerMm;
+      const geo::BBox2 rb = geo::bbox(r);
       for (FillPath& fp : out) {
-        geo::Ring cand = start_nearest(r, fp.pts.back());
+        const geo::Point& e = fp.pts.back();
+        const double dx = static_cast<double>(std::max({rb.min_x - e.X, e.X - rb.max_x, geo::coord_t{0}}));
+        const double dy = static_cast<double>(std::max({rb.min_y - e.Y, e.Y - rb.max_y, geo::coord_t{0}}));
+        if (std::hypot(dx, dy) > best) continue;  // the loop's box is further than the best crossing
+        geo::Ring cand = start_nearest(r, e);
         const double d = std::hypot(static_cast<double>(cand[0].X - fp.pts.back().X),
                                     static_cast<double>(cand[0].Y - fp.pts.back().Y));
         if (d <= best && !border.crosses(fp.pts.back(), cand[0])) best = d, join = &fp, loop = std::move(cand);
