@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """Rows and table of bench_infill.sh.
 
-usage: infill_row.py MODEL PATTERN SLICER FILE.gcode USER_SECONDS   -> one tab-separated row
+usage: infill_row.py MODEL PATTERN SLICER FILE.gcode USER_SECONDS [GCHECK_VERDICT]  -> one row
        infill_row.py --table ROWS.tsv                               -> the table
 A row: model, pattern, slicer (tranche or prusa), layers, trips, retractions, the whole filament
 (mm) and the sparse infill's (the moves under ;TYPE:Internal infill, which both slicers write),
-and the user time (s). A trip is a run of travel moves between two extrusions and a retraction a
+the user time (s) and gcheck's verdict (- when not run). A trip is a run of travel moves between two extrusions and a retraction a
 run of moves pulling E back (bench/gcode_counts.py).
 """
 import math
@@ -54,21 +54,23 @@ def infill_filament(path):
     return out
 
 
-def row(model, pattern, slicer, path, secs):
+def row(model, pattern, slicer, path, secs, verdict='-'):
     layers, _, retracts, fed, _, _, _, trips = gcode_counts.counts(path)
     print('\t'.join(str(v) for v in (model, pattern, slicer, layers, trips, retracts, f'{fed:.1f}',
-                                      f'{infill_filament(path):.1f}', secs or 'nan')))
+                                      f'{infill_filament(path):.1f}', secs or 'nan', verdict)))
 
 
 def table(path):
     data = {}
+    verdicts = {}
     models, patterns = [], []
     for line in open(path):
         f = line.rstrip('\n').split('\t')
         if len(f) < 9:
             continue
         model, pattern, slicer = f[:3]
-        data[(model, pattern, slicer)] = [float(x) for x in f[3:]]
+        data[(model, pattern, slicer)] = [float(x) for x in f[3:9]]
+        verdicts[(model, pattern, slicer)] = f[9] if len(f) > 9 else '-'
         if model not in models:
             models.append(model)
         if pattern not in patterns:
@@ -78,8 +80,8 @@ def table(path):
         return a / b if b > 0 else math.nan
 
     print('| model | pattern | infill mm (ours / prusa) | plastic | trips/layer (ours / prusa) | '
-          'retractions/layer (ours / prusa) | time s (ours / prusa) | time / our zigzag |')
-    print('|---|---|---|---|---|---|---|---|')
+          'retractions/layer (ours / prusa) | time s (ours / prusa) | time / our zigzag | gcheck |')
+    print('|---|---|---|---|---|---|---|---|---|')
     sums = defaultdict(list)
     for model in models:
         zig = data.get((model, 'zigzag', 'tranche'))
@@ -101,6 +103,7 @@ def table(path):
                 cells += [f'{t[4]:.0f} / -', '-', f'{t[1] / lay:.2f} / -', f'{t[2] / lay:.2f} / -', f'{t[5]:.2f} / -']
                 sums[pattern].append((math.nan, math.nan, math.nan, ratio(t[5], zig[5]) if zig else math.nan))
             cells.append(f'{ratio(t[5], zig[5]):.2f}' if zig else '-')
+            cells.append(verdicts.get((model, pattern, 'tranche'), '-'))
             print('| ' + ' | '.join(cells) + ' |')
     print()
     print('Geometric means over the models (ours / PrusaSlicer\'s same pattern; time: ours / our zigzag):')
@@ -118,7 +121,7 @@ def main():
     if sys.argv[1] == '--table':
         table(sys.argv[2])
     else:
-        row(*sys.argv[1:6])
+        row(*sys.argv[1:7])
 
 
 if __name__ == '__main__':

@@ -25,7 +25,9 @@ std::vector<geo::Rings> lightning_regions(std::span<const geo::Layer> layers, in
     const auto k = static_cast<size_t>(i);
     if (mat[k].empty()) continue;
     geo::Rings r;
-    if (i + 1 < n && !out[k + 1].empty()) r = offset(out[k + 1], -layers[k].height() * tan_lean);
+    // Simplified to 10 µm first: each shrink rounds the region's concave corners with arcs, and
+    // without it the vertices pile up layer after layer (a plate with holes took minutes).
+    if (i + 1 < n && !out[k + 1].empty()) r = offset(simplify(out[k + 1], 10000), -layers[k].height() * tan_lean);
     const geo::Rings a = above(i, T);
     if (!a.empty()) {
       const geo::Rings skin = i + T + 1 < n ? difference(a, intersection(a, mat[k + static_cast<size_t>(T) + 1])) : a;

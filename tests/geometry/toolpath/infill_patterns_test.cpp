@@ -269,3 +269,29 @@ TEST_CASE("lightning: the cache gives every layer task the same regions") {
   CHECK(cache.region(layers, 40, 3).empty());  // past the top
   CHECK(area_mm2(cache.region(layers, 27, 0)) > 0);  // no top layers: the skin is the top itself
 }
+
+// Regression: each layer's shrink rounded the region's concave corners (round holes) with new
+// arcs, and the vertices piled up layer after layer until one offset took minutes (the bench's
+// plate with holes). The regions are simplified before each shrink: their size stays that of the
+// outline's.
+TEST_CASE("lightning: a plate with round holes keeps its regions' vertex count bounded") {
+  geo::Polygon plate{test::rect(0, 0, 40, 40), {}};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      geo::Ring hole;
+      for (int k = 63; k >= 0; --k)  // clockwise
+        hole.push_back(geo::to_point(5 + 10 * i + 2 * std::cos(k * M_PI / 32), 5 + 10 * j + 2 * std::sin(k * M_PI / 32)));
+      plate.holes.push_back(hole);
+    }
+  const auto layers = test::stack(60, 0.2, plate);
+  const auto regions = lightning_regions(layers, 3, 40);
+  size_t outline = 4 + 16 * 64, most = 0;
+  for (const auto& r : regions) {
+    size_t v = 0;
+    for (const auto& ring : r) v += ring.size();
+    most = std::max(most, v);
+  }
+  CAPTURE(most);
+  CHECK(most > 0);
+  CHECK(most < 4 * outline);
+}
