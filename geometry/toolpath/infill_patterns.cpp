@@ -27,9 +27,12 @@ constexpr double kPi = std::numbers::pi;
 // over 32 heights of one period: 2.451; PrusaSlicer's FillGyroid uses 2.44).
 constexpr double kGyroidLength = 2.45;
 
-geo::Point to_pt(double x, double y) {
-  return geo::Point(static_cast<coord_t>(std::llround(x)), static_cast<coord_t>(std::llround(y)));
-}
+// Rounded to the nearest unit (half away from zero, as llround, without its cost in the
+// gyroid's thousands of points per layer).
+coord_t round_units(double v) { return static_cast<coord_t>(v < 0 ? v - 0.5 : v + 0.5); }
+geo::Point to_pt(double x, double y) { return geo::Point(round_units(x), round_units(y)); }
+// Plain length: std::hypot's care for overflow costs more than the rest of the loop here.
+double norm(double x, double y) { return std::sqrt(x * x + y * y); }
 
 // Lines of a pattern in its own frame (u along the pattern's angle, v across, mm), turned into
 // bed units at the end.
@@ -121,7 +124,7 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
   // Free coordinate s runs along u (curves t = v(u)) or, swapped, along v (curves u(v)).
   const double s0 = (swap ? f.v0 : f.u0) * w, s1 = (swap ? f.v1 : f.u1) * w;
   const double t0 = (swap ? f.u0 : f.v0) * w, t1 = (swap ? f.u1 : f.v1) * w;
-  const double tol = 0.01 * w;  // 10 µm, in radians
+  const double tol = 0.02 * w;  // 20 µm, in radians
   auto add = [&](geo::Ring& ring, double s, double t) {
     ring.push_back(swap ? f.bed(t / w, s / w) : f.bed(s / w, t / w));
   };
@@ -136,7 +139,7 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
     // Refines the piece from (sa, ta) to (sb, tb) until its middle lies within tol of the chord.
     auto refine = [&](auto&& self, double sa, double ta, double sb, double tb, int depth) -> void {
       const double sm = 0.5 * (sa + sb), tm = unwrap(g(sm), 0.5 * (ta + tb));
-      const double dev = std::abs(tm - 0.5 * (ta + tb)) * (sb - sa) / std::hypot(sb - sa, tb - ta);
+      const double dev = std::abs(tm - 0.5 * (ta + tb)) * (sb - sa) / norm(sb - sa, tb - ta);
       if (depth < 12 && dev > tol) {
         self(self, sa, ta, sm, tm, depth + 1);
         self(self, sm, tm, sb, tb, depth + 1);
@@ -218,8 +221,9 @@ std::vector<Ring2> to_ring2(const geo::Rings& rings) {
   return out;
 }
 
-// The region the lines are clipped to: the shape less a band `inset` wide along its artificial
-// edges; each of its edges is artificial when it runs along such a band.
+// The region the lines are clipped to: the shape (its rings disjoint, outer ones counter-clockwise)
+// less a band `inset` wide along its artificial edges; each of its edges is artificial when it
+// runs along such a band.
 std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& rings) {
   geo::Rings cuts;  // runs of artificial edges as open polylines
   for (size_t r = 0; r < shape.rings.size(); ++r) {
@@ -229,7 +233,7 @@ std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& 
     for (size_t i = 0; i < n; ++i)
       if (shape.kinds[r][i] == geo::EdgeKind::Artificial) cuts.push_back({ring[i], ring[(i + 1) % n]});
   }
-  rings = union_of(shape.rings);
+  rings = shape.rings;  // disjoint rings (region_shape's): the clipping reads them even-odd
   if (cuts.empty() || inset <= 0) return to_ring2(rings);
   geo::Rings band;
   ClipperLib::ClipperOffset co(2.0, 5000);
@@ -273,7 +277,7 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, 
     double len = 0;
     auto add = [&](UV p) {
       if (!cur.pts.empty()) {
-        len += std::hypot(p.u - cur.pts.back().u, p.v - cur.pts.back().v);
+        len += norm(p.u - cur.pts.back().u, p.v - cur.pts.back().v);
         cur.border.push_back(Border::None);
       }
       cur.pts.push_back(p);

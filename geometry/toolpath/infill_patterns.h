@@ -19,7 +19,7 @@
 //               PrusaSlicer's honeycomb);
 //   gyroid      the section at z of the gyroid sin x cos y + sin y cos z + sin z cos x = 0 with
 //               period 2.45·spacing/density (its section has 2.45/period of line per mm²,
-//               averaged over z: from −6 % to +9 % on single layers), sampled to 10 µm;
+//               averaged over z: from −6 % to +9 % on single layers), sampled to 20 µm;
 //   concentric  loops inside the region's border, spacing/density apart, the first one half a
 //               spacing from the border (touching the walls, as PrusaSlicer's), each joined to
 //               the next by a short crossing when it stays inside the region.
