@@ -6,6 +6,7 @@
 #include "geometry/toolpath/cells.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/flow.h"
+#include "geometry/toolpath/infill_patterns.h"
 #include "geometry/toolpath/island_shape.h"
 #include "geometry/toolpath/perimeters.h"
 #include "geometry/toolpath/zigzag.h"
@@ -204,9 +205,45 @@ Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<
   return ok_status();
 }
 
-// One fill region's cells: a zig-zag per cell, on the region's grid of lines at `angle`.
+// A sparse region filled with a pattern other than the zig-zag (geometry/toolpath/infill_patterns):
+// each path is a cell of its own, at the island's angle (the cell stage does not turn them).
+// Lightning zig-zags only the part of the region that holds up the tops above, on the bed's
+// grid (geometry/toolpath/lightning.h: computed once for all layers, shared through the setup).
+void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::InfillPattern pattern,
+                   toolpath::Neighbours& nb, double angle, double density) {
+  std::vector<toolpath::FillPath> fps;
+  if (pattern == schema::InfillPattern::Lightning) {
+    const geo::Rings& need =
+        nest.setup().lightning.region(nest.setup().layers, nb.index(), static_cast<int>(ip.props[PropId::TopLayers]));
+    const geo::Rings rings = toolpath::intersection(f.region.rings, need);
+    if (!rings.empty()) fps = toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), f.fs);
+  } else {
+    toolpath::PatternSpec ps;
+    ps.pattern = pattern;
+    ps.angle_deg = angle;
+    ps.spacing_mm = f.s;
+    ps.density = density;
+    const geo::Layer* layer = nb.at(0);
+    ps.z_mm = layer ? layer->z_slice() : 0.0;
+    ps.artificial_inset_mm = f.fs.artificial_inset_mm;
+    ps.link_max_mm = f.fs.link_max_mm;
+    fps = toolpath::pattern_fill(toolpath::region_shape(f.region.rings, f.borders, 0.25 * f.w), ps);
+  }
+  for (toolpath::FillPath& fp : fps) {
+    CellPlan cell;
+    cell.index = static_cast<int>(ip.cells.size());
+    cell.area_mm2 = fp.area_mm2;
+    cell.fill_angle_deg = angle;
+    cell.solid = false;
+    ip.cells.push_back(cell);
+    add_cell_path(ip, nest, f, ip.cells.back(), fp, 1.0);
+  }
+}
+
+// One fill region's cells: a zig-zag per cell, on the region's grid of lines at `angle` (or the
+// island's infill_pattern, for a sparse region).
 Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const std::vector<const EdgeGrid*>& borders,
-                   double angle, double height_mm) {
+                   double angle, double height_mm, toolpath::Neighbours& nb) {
   const bool solid = region.kind != PathKind::Infill;
   TraceRef log;
   auto props = nest.path_props(ip.props, region.kind, -1, &log);
@@ -216,6 +253,11 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   if (density <= 0) return ok_status();
   RegionFill f{region, borders, solid, w, toolpath::bead_spacing_mm(w, height_mm), {}, 1.0, *props, log};
   fill_spec(f, region.rings, angle, density);
+  const auto pattern = static_cast<schema::InfillPattern>(static_cast<int>((*props)[PropId::InfillPattern]));
+  if (!solid && pattern != schema::InfillPattern::Zigzag && density < 1) {
+    build_pattern(ip, nest, f, pattern, nb, angle, density);
+    return ok_status();
+  }
   // Each zig-zag is a cell: a monotone piece of the region at the resolution of its lines.
   // Edges within a quarter bead of the island's fill border are on it (see region_shape).
   std::vector<toolpath::FillPath> fps = toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), f.fs);
@@ -363,7 +405,7 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   std::vector<const EdgeGrid*> borders{&fill_grid};
   if (!wide.empty()) borders.push_back(&wide_grid);
   for (const FillRegion& region : fill) {
-    if (Status s = build_cells(ip, nest, region, borders, angle, height_mm); !s) return s;
+    if (Status s = build_cells(ip, nest, region, borders, angle, height_mm, nb); !s) return s;
     regions.push_back({region.kind, EdgeGrid(region.rings)});
   }
   if (P[PropId::Ironing] != 0)

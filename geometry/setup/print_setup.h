@@ -16,6 +16,7 @@
 #include "geometry/core/layer.h"
 #include "geometry/support/brim.h"
 #include "geometry/support/support.h"
+#include "geometry/toolpath/lightning.h"
 #include "geometry/toolpath/motion.h"
 #include "runtime/context/cascade.h"
 
@@ -80,6 +81,9 @@ struct PrintSetup {
   std::vector<support::SupportLayer> support;
   std::vector<std::vector<float>> overhang_area;
   std::vector<support::BrimPath> brim;
+  // Lightning infill's regions for every layer, computed by the first layer task that needs
+  // them (per top_layers value) and shared: the one thing a layer task may add to the setup.
+  mutable toolpath::LightningCache lightning;
 };
 
 // Builds the setup of `layers` (resolved, bottom to top, not empty). `print_ctx` and

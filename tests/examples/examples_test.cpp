@@ -407,6 +407,48 @@ TEST_CASE("example supports: trees under the table's top, none under the low led
   CHECK(top == doctest::Approx(14.8));
 }
 
+TEST_CASE("example infill-patterns: a grid in the base, a gyroid in the column, loops in the pin") {
+  TempDir dir("ex-infill-patterns");
+  auto g = run_example(dir, "infill-patterns").gcode("infill-patterns");
+  // The model is centred: the base x 75-125, y 85-115; the column x 83-99, y 92-108; the pin
+  // x 111-117, y 97-103. Directions of the sparse infill's moves, in whole degrees [0, 180).
+  auto directions = [&](int layer, double x0, double x1) {
+    std::map<int, double> len;
+    for (const auto& m : g.moves) {
+      if (m.layer != layer || m.type != "Internal infill" || !(m.has_xy && m.de > 0)) continue;
+      const double x = 0.5 * (m.x0 + m.x);
+      if (x < x0 || x > x1) continue;
+      const double l = std::hypot(m.x - m.x0, m.y - m.y0);
+      const int a = static_cast<int>(std::lround(std::fmod(std::atan2(m.y - m.y0, m.x - m.x0) * 180 / std::numbers::pi + 360, 180))) % 180;
+      len[a] += l;
+    }
+    return len;
+  };
+  auto share = [](const std::map<int, double>& len, std::initializer_list<int> angles) {
+    double all = 0, in = 0;
+    for (const auto& [a, l] : len) {
+      all += l;
+      for (int b : angles)
+        if (std::abs(a - b) <= 1) in += l;
+    }
+    return all > 0 ? in / all : 0.0;
+  };
+  // Layer 15 (z 3 mm): the base's grid, both ways on one layer.
+  auto base = directions(15, 75, 125);
+  REQUIRE(!base.empty());
+  CHECK(share(base, {45}) > 0.3);
+  CHECK(share(base, {135}) > 0.3);
+  // Layer 60 (z 12 mm): the column's gyroid, no single direction dominating.
+  auto column = directions(60, 83, 99);
+  REQUIRE(!column.empty());
+  CHECK(share(column, {45, 135}) < 0.5);
+  CHECK(column.size() > 20);
+  // Layer 45 (z 9 mm): the pin's concentric loops, along x and y.
+  auto pin = directions(45, 111, 117);
+  REQUIRE(!pin.empty());
+  CHECK(share(pin, {0, 90}) > 0.6);
+}
+
 TEST_CASE("example dome-lid: thick layers on the base, thinner up the dome, seams in the inner corner, the base's top ironed") {
   TempDir dir("ex-dome-lid");
   auto g = run_example(dir, "dome-lid").gcode("dome-lid");

@@ -416,3 +416,41 @@ TEST_CASE("features/support-for-overhangs-only: sparse support at its own speed,
   CHECK(support_moves(g) > 30);
   CHECK(iface_layers.size() == 1);
 }
+
+TEST_CASE("features/gyroid-for-strength: gyroid at 25% on big islands, the zig-zag on small ones") {
+  TempDir dir("feat-gyroid");
+  // A 20 mm square block (400 mm²) beside a 6 mm square pin (36 mm²), both 10 mm tall.
+  geo::Mesh m = geo::box({20, 20, 10});
+  geo::append(m, geo::box({6, 6, 10}, {30, 0, 0}));
+  auto plain = slice_with(dir, "plain", m, Profile());
+  auto gyroid = slice_with(dir, "gyroid", m, Profile().feature("gyroid-for-strength"));
+  auto plain_25 = slice_with(dir, "plain25", m, Profile().set("infill_density", "25%"));
+  // Infill of one middle layer, split by island: the pin is the part with x beyond the block.
+  auto infill = [](const Gcode& g, bool pin) {
+    std::vector<std::pair<double, double>> pts;
+    double fil = 0;
+    for (const auto& mv : g.moves)
+      if (extrudes(mv) && mv.type == "Internal infill" && mv.layer == 25) {
+        // The scene (0..36 mm) is centred on the 200 mm bed: the block at x 82..102, the pin 112..118.
+        if (pin != (mv.x > 107)) continue;
+        pts.push_back({mv.x, mv.y});
+        fil += mv.de;
+      }
+    return std::make_pair(pts, fil);
+  };
+  const auto big_plain = infill(plain, false), big_gyroid = infill(gyroid, false);
+  REQUIRE(!big_plain.first.empty());
+  REQUIRE(!big_gyroid.first.empty());
+  CHECK(big_plain.first != big_gyroid.first);
+  // Gyroid lines are curves: many more points than the zig-zag's straight lines.
+  CHECK(big_gyroid.first.size() > 3 * big_plain.first.size());
+  // 25% instead of 20%: more plastic, about as much as a 25% zig-zag.
+  const double big_25 = infill(plain_25, false).second;
+  CHECK(big_gyroid.second > big_plain.second * 1.1);
+  CHECK(big_gyroid.second == doctest::Approx(big_25).epsilon(0.2));
+  // The pin keeps its 20% zig-zag.
+  CHECK(infill(gyroid, true).first == infill(plain, true).first);
+  // A smaller threshold takes the pin too.
+  auto both = slice_with(dir, "both", m, Profile().feature("gyroid-for-strength").set("gyroid_min_area", "20"));
+  CHECK(infill(both, true).first != infill(plain, true).first);
+}

@@ -1,0 +1,494 @@
+#include "geometry/toolpath/infill_patterns.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <unordered_map>
+
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/zigzag_ring.h"
+
+namespace tranche::toolpath {
+
+using geo::coord_t;
+using schema::Border;
+using schema::InfillPattern;
+using zigzag_detail::End;
+using zigzag_detail::Poly;
+using zigzag_detail::Ring2;
+using zigzag_detail::UV;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Average length of the gyroid's horizontal section per unit area, times its period (measured
+// over 32 heights of one period: 2.451; PrusaSlicer's FillGyroid uses 2.44).
+constexpr double kGyroidLength = 2.45;
+
+// Rounded to the nearest unit (half away from zero, as llround, without its cost in the
+// gyroid's thousands of points per layer).
+coord_t round_units(double v) { return static_cast<coord_t>(v < 0 ? v - 0.5 : v + 0.5); }
+geo::Point to_pt(double x, double y) { return geo::Point(round_units(x), round_units(y)); }
+// Plain length: std::hypot's care for overflow costs more than the rest of the loop here.
+double norm(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// Lines of a pattern in its own frame (u along the pattern's angle, v across, mm), turned into
+// bed units at the end.
+class Frame {
+ public:
+  Frame(double angle_deg, double x0, double y0, double x1, double y1)
+      : c_(std::cos(angle_deg * kPi / 180)), s_(std::sin(angle_deg * kPi / 180)) {
+    for (double x : {x0, x1})
+      for (double y : {y0, y1}) {
+        const double u = x * c_ + y * s_, v = -x * s_ + y * c_;
+        u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+      }
+  }
+  geo::Point bed(double u, double v) const {
+    return to_pt((u * c_ - v * s_) * geo::kUnitsPerMm, (u * s_ + v * c_) * geo::kUnitsPerMm);
+  }
+  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;  // the box's extent in the frame (mm)
+
+ private:
+  double c_, s_;
+};
+
+// Straight lines at `dir_deg` (from +x), `pitch` apart, through the points whose distance across
+// them is offset + k·pitch, covering the box; consecutive lines run opposite ways.
+void line_family(geo::Rings& out, double dir_deg, double pitch, double offset, double x0, double y0, double x1,
+                 double y1) {
+  Frame f(dir_deg, x0, y0, x1, y1);
+  const double k0 = std::ceil((f.v0 - offset) / pitch), k1 = std::floor((f.v1 - offset) / pitch);
+  for (double k = k0; k <= k1; k += 1) {
+    const double v = offset + k * pitch;
+    const bool back = static_cast<long long>(k) % 2 != 0;
+    geo::Point a = f.bed(back ? f.u1 : f.u0, v), b = f.bed(back ? f.u0 : f.u1, v);
+    out.push_back({a, b});
+  }
+}
+
+// Trapezoid waves drawing flat-topped hexagons of side `a` (mm), plateaus of neighbouring waves
+// `gap` apart (one bead: the shared edges printed twice side by side).
+void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, double y0, double x1, double y1) {
+  Frame f(angle, x0, y0, x1, y1);
+  const double h = a * std::sqrt(3.0) / 2, period = 3 * a;
+  const double lo = std::min(0.5 * gap, 0.45 * h), hi = h - lo;  // plateau heights within a wave
+  const double j0 = std::floor(f.v0 / h) - 1, j1 = std::ceil(f.v1 / h);
+  const double n0 = std::floor(f.u0 / period) - 1, n1 = std::ceil(f.u1 / period) + 1;
+  for (double j = j0; j <= j1; j += 1) {
+    const double base = j * h;
+    const double shift = static_cast<long long>(j) % 2 == 0 ? 0.0 : 1.5 * a;  // odd waves mirrored
+    geo::Ring w;
+    for (double n = n0; n <= n1; n += 1) {
+      const double u = n * period + shift;
+      w.push_back(f.bed(u, base + lo));
+      w.push_back(f.bed(u + a, base + lo));
+      w.push_back(f.bed(u + 1.5 * a, base + hi));
+      w.push_back(f.bed(u + 2.5 * a, base + hi));
+    }
+    if (static_cast<long long>(j) % 2 != 0) std::reverse(w.begin(), w.end());
+    out.push_back(std::move(w));
+  }
+}
+
+// One branch of the gyroid's section at height gz (radians): the coordinate solved for, t, as a
+// function of the other one, s (radians), on family `fam` (0 or 1). With |cos gz| ≥ |sin gz|
+// it solves sin s cos t + sin t cos gz + sin gz cos s = 0 for t (always solvable then), else
+// the same equation with s and t swapped, for s: each curve is then a graph over the free
+// coordinate, defined everywhere.
+struct GyroidBranch {
+  double gz;
+  bool swap;
+  int fam;
+  double operator()(double s) const {
+    const double cz = std::cos(gz), sz = std::sin(gz);
+    double A, B, C;  // A sin t + B cos t = C
+    if (!swap) {     // sin s cos t + cos gz sin t = −sin gz cos s
+      A = cz, B = std::sin(s), C = -sz * std::cos(s);
+    } else {  // cos s sin t + sin gz cos t = −sin s cos gz  (t: x, s: y)
+      A = std::cos(s), B = sz, C = -std::sin(s) * cz;
+    }
+    const double R = std::hypot(A, B), phi = std::atan2(B, A);  // A sin t + B cos t = R sin(t + φ)
+    const double q = std::asin(std::clamp(C / R, -1.0, 1.0));
+    return (fam == 0 ? q : kPi - q) - phi;
+  }
+};
+
+// The gyroid's section, period `period` mm, at height z (mm), in the frame at `angle`.
+void gyroid(geo::Rings& out, double angle, double period, double z, double x0, double y0, double x1, double y1) {
+  Frame f(angle, x0, y0, x1, y1);
+  const double w = 2 * kPi / period, gz = w * z;
+  const bool swap = std::abs(std::cos(gz)) < std::abs(std::sin(gz));
+  // Free coordinate s runs along u (curves t = v(u)) or, swapped, along v (curves u(v)).
+  const double s0 = (swap ? f.v0 : f.u0) * w, s1 = (swap ? f.v1 : f.u1) * w;
+  const double t0 = (swap ? f.u0 : f.v0) * w, t1 = (swap ? f.u1 : f.v1) * w;
+  const double tol = 0.02 * w;  // 20 µm, in radians
+  auto add = [&](geo::Ring& ring, double s, double t) {
+    ring.push_back(swap ? f.bed(t / w, s / w) : f.bed(s / w, t / w));
+  };
+  const double step = kPi / 8;
+  for (int fam = 0; fam < 2; ++fam) {
+    GyroidBranch g{gz, swap, fam};
+    // The branch once, unwrapped (continuous), then copied for every period across.
+    std::vector<std::pair<double, double>> pts;
+    auto unwrap = [](double t, double near) { return t + 2 * kPi * std::round((near - t) / (2 * kPi)); };
+    double s = s0 - step, t = g(s);
+    pts.push_back({s, t});
+    // Refines the piece from (sa, ta) to (sb, tb) until its middle lies within tol of the chord.
+    auto refine = [&](auto&& self, double sa, double ta, double sb, double tb, int depth) -> void {
+      const double sm = 0.5 * (sa + sb), tm = unwrap(g(sm), 0.5 * (ta + tb));
+      const double dev = std::abs(tm - 0.5 * (ta + tb)) * (sb - sa) / norm(sb - sa, tb - ta);
+      if (depth < 12 && dev > tol) {
+        self(self, sa, ta, sm, tm, depth + 1);
+        self(self, sm, tm, sb, tb, depth + 1);
+      } else {
+        pts.push_back({sb, tb});
+      }
+    };
+    while (s < s1 + step) {
+      const double sn = s + step, tn = unwrap(g(sn), t);
+      refine(refine, s, t, sn, tn, 0);
+      s = sn, t = tn;
+    }
+    // Copies 2π apart, those that reach [t0, t1] only.
+    double lo = 1e300, hi = -1e300;
+    for (const auto& q : pts) lo = std::min(lo, q.second), hi = std::max(hi, q.second);
+    for (double k = std::floor((t0 - hi) / (2 * kPi)); k <= std::ceil((t1 - lo) / (2 * kPi)); k += 1) {
+      const double dt = 2 * kPi * k;
+      if (hi + dt < t0 || lo + dt > t1) continue;
+      geo::Ring ring;
+      for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
+      out.push_back(std::move(ring));
+    }
+  }
+}
+
+// The nearest ring edge to a point, over a hash grid of the rings' edges.
+class EdgeIndex {
+ public:
+  EdgeIndex(const std::vector<Ring2>& rings, double reach) : rings_(rings), reach_(reach) {
+    for (uint32_t r = 0; r < rings.size(); ++r) {
+      const auto& p = rings[r].pts;
+      for (uint32_t i = 0; i < p.size(); ++i) {
+        const UV &a = p[i], &b = p[(i + 1) % p.size()];
+        const long long cx0 = cell(std::min(a.u, b.u) - reach), cx1 = cell(std::max(a.u, b.u) + reach);
+        const long long cy0 = cell(std::min(a.v, b.v) - reach), cy1 = cell(std::max(a.v, b.v) + reach);
+        for (long long x = cx0; x <= cx1; ++x)
+          for (long long y = cy0; y <= cy1; ++y) cells_[key(x, y)].push_back({r, i});
+      }
+    }
+  }
+  // The edge within `reach` nearest to p; false when none.
+  bool nearest(UV p, uint32_t& ring, uint32_t& edge, double& dist) const {
+    auto it = cells_.find(key(cell(p.u), cell(p.v)));
+    if (it == cells_.end()) return false;
+    dist = reach_;
+    bool found = false;
+    for (const auto& [r, i] : it->second) {
+      const auto& pts = rings_[r].pts;
+      const double d = distance(p, pts[i], pts[(i + 1) % pts.size()]);
+      if (d <= dist) dist = d, ring = r, edge = i, found = true;
+    }
+    return found;
+  }
+  static double distance(UV p, UV a, UV b) {
+    const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
+    const double t = l2 > 0 ? std::clamp(((p.u - a.u) * du + (p.v - a.v) * dv) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(p.u - a.u - t * du, p.v - a.v - t * dv);
+  }
+
+ private:
+  static constexpr double kCell = 1e6;  // 1 mm
+  static long long cell(double x) { return static_cast<long long>(std::floor(x / kCell)); }
+  static uint64_t key(long long x, long long y) {
+    return (static_cast<uint64_t>(x) << 32) ^ (static_cast<uint64_t>(y) & 0xffffffffu);
+  }
+  const std::vector<Ring2>& rings_;
+  double reach_;
+  std::unordered_map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells_;
+};
+
+std::vector<Ring2> to_ring2(const geo::Rings& rings) {
+  std::vector<Ring2> out;
+  for (const auto& r : rings) {
+    Ring2 q;
+    for (const auto& p : r) q.pts.push_back({static_cast<double>(p.X), static_cast<double>(p.Y)});
+    q.kinds.assign(q.pts.size(), geo::EdgeKind::Real);
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
+// The region the lines are clipped to: the shape (its rings disjoint, outer ones counter-clockwise)
+// less a band `inset` wide along its artificial edges; each of its edges is artificial when it
+// runs along such a band.
+std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& rings) {
+  geo::Rings cuts;  // runs of artificial edges as open polylines
+  for (size_t r = 0; r < shape.rings.size(); ++r) {
+    const auto& ring = shape.rings[r];
+    const size_t n = ring.size();
+    if (r >= shape.kinds.size() || n < 3) continue;
+    for (size_t i = 0; i < n; ++i)
+      if (shape.kinds[r][i] == geo::EdgeKind::Artificial) cuts.push_back({ring[i], ring[(i + 1) % n]});
+  }
+  rings = shape.rings;  // disjoint rings (region_shape's): the clipping reads them even-odd
+  if (cuts.empty() || inset <= 0) return to_ring2(rings);
+  geo::Rings band;
+  ClipperLib::ClipperOffset co(2.0, 5000);
+  co.AddPaths(cuts, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  co.Execute(band, inset);
+  rings = difference(rings, band);
+  std::vector<Ring2> out = to_ring2(rings);
+  const std::vector<Ring2> cut2 = to_ring2(cuts);
+  EdgeIndex near_cut(cut2, inset + 2e4);
+  for (auto& q : out)
+    for (size_t i = 0; i < q.pts.size(); ++i) {
+      const UV &a = q.pts[i], &b = q.pts[(i + 1) % q.pts.size()];
+      uint32_t rr, ee;
+      double d;
+      if (near_cut.nearest({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, rr, ee, d) && d <= inset + 1e4)
+        q.kinds[i] = geo::EdgeKind::Artificial;
+    }
+  return out;
+}
+
+// Open polylines cut into the pieces inside `region` (its edge grid `grid`): each piece's ends
+// lie on the ring edges the polyline crosses there (or on none, for a polyline that starts or
+// ends inside). Between two crossings a piece is in or out by the middle of the stretch (exact
+// even-odd test), so a polyline through a vertex or along an edge is cut right as well.
+std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, const EdgeGrid& grid, uint32_t& lone,
+                             double pitch_units) {
+  std::vector<Poly> polys;
+  auto at = [](const geo::Point& a, const geo::Point& b, double t) {
+    return UV{static_cast<double>(a.X) + t * static_cast<double>(b.X - a.X),
+              static_cast<double>(a.Y) + t * static_cast<double>(b.Y - a.Y)};
+  };
+  const geo::BBox2 box = bbox(region);
+  auto outside_box = [&](const geo::Point& a, const geo::Point& b) {
+    return std::max(a.X, b.X) < box.min_x || std::min(a.X, b.X) > box.max_x || std::max(a.Y, b.Y) < box.min_y ||
+           std::min(a.Y, b.Y) > box.max_y;
+  };
+  for (const geo::Ring& line : lines) {
+    if (line.size() < 2) continue;
+    bool in = grid.inside(line[0]);
+    Poly cur;
+    double len = 0;
+    auto add = [&](UV p) {
+      if (!cur.pts.empty()) {
+        len += norm(p.u - cur.pts.back().u, p.v - cur.pts.back().v);
+        cur.border.push_back(Border::None);
+      }
+      cur.pts.push_back(p);
+    };
+    auto close = [&](End e) {
+      e.p = cur.pts.back();
+      cur.last = e;
+      if (cur.pts.size() >= 2 && len >= 1e3) {  // a micrometre: a line grazing a corner
+        cur.area = len * pitch_units;
+        polys.push_back(std::move(cur));
+      }
+      cur = Poly{};
+      len = 0;
+    };
+    if (in) {
+      add({static_cast<double>(line[0].X), static_cast<double>(line[0].Y)});
+      cur.first = End{lone++, 0, cur.pts[0]};
+    }
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const geo::Point &a = line[i], &b = line[i + 1];
+      if (a == b) continue;
+      if (!in && outside_box(a, b)) continue;  // no crossing out there
+      const std::vector<EdgeGrid::Hit> hs = grid.hits(a, b);
+      for (size_t h = 0; h < hs.size(); ++h) {
+        const double t = hs[h].t, next = h + 1 < hs.size() ? hs[h + 1].t : 1.0;
+        if (next - t < 1e-12 && h + 1 < hs.size()) continue;  // a vertex: decided by the next hit
+        const UV mid = at(a, b, 0.5 * (t + next));
+        const bool after = grid.inside(geo::Point(static_cast<coord_t>(std::llround(mid.u)),
+                                                  static_cast<coord_t>(std::llround(mid.v))));
+        if (after == in) continue;
+        const UV p = at(a, b, t);
+        if (in) {
+          add(p);
+          close(End{hs[h].ring, hs[h].edge, p});
+        } else {
+          add(p);
+          cur.first = End{hs[h].ring, hs[h].edge, p};
+        }
+        in = after;
+      }
+      if (in) add({static_cast<double>(b.X), static_cast<double>(b.Y)});
+    }
+    if (in && !cur.pts.empty()) close(End{lone++, 0, cur.pts.back()});
+  }
+  return polys;
+}
+
+// Open polylines to paths along the border: clipped to the region, each end put on its ring
+// edge, joined by links along the border, merged points dropped.
+std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& shape, const PatternSpec& spec,
+                                    double pitch_mm) {
+  geo::Rings region;
+  const std::vector<Ring2> rings = clip_rings(shape, spec.artificial_inset_mm * geo::kUnitsPerMm, region);
+  if (region.empty()) return {};
+  const EdgeGrid grid(region);
+  uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
+  std::vector<Poly> polys = clip_lines(lines, region, grid, lone, pitch_mm * geo::kUnitsPerMm);
+  polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
+  std::vector<FillPath> out;
+  for (const Poly& P : polys) {
+    FillPath fp;
+    for (size_t k = 0; k < P.pts.size(); ++k) {
+      const geo::Point q = to_pt(P.pts[k].u, P.pts[k].v);
+      if (!fp.pts.empty()) {
+        if (fp.pts.back() == q) continue;
+        fp.border.push_back(P.border[k - 1]);
+      }
+      fp.pts.push_back(q);
+    }
+    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
+    fp.runs = P.runs;
+    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
+  }
+  return out;
+}
+
+// The point of ring r nearest to p: inserted as a vertex, the ring turned to start there.
+geo::Ring start_nearest(const geo::Ring& r, const geo::Point& p) {
+  double best = 1e300;
+  size_t at = 0;
+  geo::Point q = r[0];
+  for (size_t i = 0; i < r.size(); ++i) {
+    const UV a{static_cast<double>(r[i].X), static_cast<double>(r[i].Y)};
+    const UV b{static_cast<double>(r[(i + 1) % r.size()].X), static_cast<double>(r[(i + 1) % r.size()].Y)};
+    const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
+    const double pu = static_cast<double>(p.X), pv = static_cast<double>(p.Y);
+    const double t = l2 > 0 ? std::clamp(((pu - a.u) * du + (pv - a.v) * dv) / l2, 0.0, 1.0) : 0.0;
+    const double d = std::hypot(pu - a.u - t * du, pv - a.v - t * dv);
+    if (d < best) best = d, at = i, q = to_pt(a.u + t * du, a.v + t * dv);
+  }
+  geo::Ring out{q};
+  for (size_t k = 1; k <= r.size(); ++k) {
+    const geo::Point& v = r[(at + k) % r.size()];
+    if (v != out.back()) out.push_back(v);
+  }
+  if (out.back() != q) out.push_back(q);  // closed: back to the start
+  return out;
+}
+
+// Concentric loops, outermost first, each joined to the next when the crossing is short and
+// stays inside the region.
+std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, double pitch_mm) {
+  const geo::Rings region = union_of(shape.rings);
+  if (region.empty()) return {};
+  const EdgeGrid border(region);
+  std::vector<FillPath> out;
+  // The first loop half a bead inside the border, touching the walls (as PrusaSlicer's and
+  // Cura's concentric infill), the others pitch_mm apart: a narrow region still gets a loop, and
+  // the region gets (pitch − spacing) / 2 × its border's length of bead more than the density's.
+  const double first = 0.5 * spacing_mm;
+  // Shrunk a pitch further for each loop (erosions by discs add up), each step from a copy
+  // simplified to 10 µm: a finely tessellated curve shrunk by many times its edges' length would
+  // make every offset edge cross its neighbours'.
+  constexpr geo::coord_t kTol = 10000;
+  geo::Rings inner = offset(simplify(region, kTol), -first);
+  for (int k = 0; k < 100000 && !inner.empty(); ++k, inner = offset(simplify(inner, kTol), -pitch_mm)) {
+    // The border of the region shrunk by the loop's distance, less the parts of it narrower than
+    // a bead (whose border would run back over itself).
+    geo::Rings loops = offset_open(inner, 0, 0.5 * spacing_mm);
+    if (loops.empty()) break;
+    std::stable_sort(loops.begin(), loops.end(),
+                     [](const geo::Ring& a, const geo::Ring& b) { return ClipperLib::Area(a) > ClipperLib::Area(b); });
+    for (const geo::Ring& r : loops) {
+      if (r.size() < 3) continue;
+      // The path whose end is nearest, if the crossing to this loop is short and inside.
+      FillPath* join = nullptr;
+      geo::Ring loop;
+      double best = 1.5 * pitch_mm * geo::kUnitsPerMm;
+      const geo::BBox2 rb = geo::bbox(r);
+      for (FillPath& fp : out) {
+        const geo::Point& e = fp.pts.back();
+        const double dx = static_cast<double>(std::max({rb.min_x - e.X, e.X - rb.max_x, geo::coord_t{0}}));
+        const double dy = static_cast<double>(std::max({rb.min_y - e.Y, e.Y - rb.max_y, geo::coord_t{0}}));
+        if (std::hypot(dx, dy) > best) continue;  // the loop's box is further than the best crossing
+        geo::Ring cand = start_nearest(r, e);
+        const double d = std::hypot(static_cast<double>(cand[0].X - fp.pts.back().X),
+                                    static_cast<double>(cand[0].Y - fp.pts.back().Y));
+        if (d <= best && !border.crosses(fp.pts.back(), cand[0])) best = d, join = &fp, loop = std::move(cand);
+      }
+      if (!join) {
+        out.push_back({});
+        join = &out.back();
+        loop = start_nearest(r, r[0]);
+      }
+      double len = 0;
+      for (size_t i = 0; i < loop.size(); ++i) {
+        if (!join->pts.empty()) {
+          if (join->pts.back() == loop[i]) continue;
+          join->border.push_back(Border::None);
+          len += std::hypot(static_cast<double>(loop[i].X - join->pts.back().X),
+                            static_cast<double>(loop[i].Y - join->pts.back().Y));
+        }
+        join->pts.push_back(loop[i]);
+      }
+      join->area_mm2 += len * geo::kMmPerUnit * pitch_mm;
+    }
+  }
+  std::erase_if(out, [](const FillPath& fp) { return fp.pts.size() < 2; });
+  return out;
+}
+
+}  // namespace
+
+geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x1, double y1) {
+  geo::Rings out;
+  const double s = spec.spacing_mm, rho = spec.density;
+  if (!(rho > 0 && s > 0)) return out;
+  double angle = std::fmod(spec.angle_deg, 90.0);
+  if (angle < 0) angle += 90;
+  switch (spec.pattern) {
+    case InfillPattern::Grid:
+      for (double a : {0.0, 90.0}) line_family(out, angle + a, 2 * s / rho, 0, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Triangles:
+      for (double a : {0.0, 60.0, 120.0}) line_family(out, angle + a, 3 * s / rho, 0, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Cubic: {
+      // The three face directions of cubes standing on a corner cut the plane z in lines that
+      // move across by z/√2 as z rises; the horizontal parts of the faces' normals sum to zero,
+      // so with the normals at +90°, +150°, +210° of the lines the middle set moves the other way.
+      const double pitch = 3 * s / rho, shift = spec.z_mm / std::sqrt(2.0);
+      const double shifts[3] = {shift, -shift, shift};
+      for (int i = 0; i < 3; ++i)
+        line_family(out, angle + 60.0 * i, pitch, std::fmod(shifts[i], pitch), x0, y0, x1, y1);
+      break;
+    }
+    case InfillPattern::Honeycomb:
+      honeycomb(out, angle, 8 * s / (3 * std::sqrt(3.0) * rho), s, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Gyroid:
+      gyroid(out, angle, kGyroidLength * s / rho, spec.z_mm, x0, y0, x1, y1);
+      break;
+    case InfillPattern::Zigzag:
+    case InfillPattern::Concentric:
+    case InfillPattern::Lightning:
+      break;
+  }
+  return out;
+}
+
+std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec) {
+  if (!(spec.density > 0 && spec.spacing_mm > 0) || shape.rings.empty()) return {};
+  const double pitch = spec.spacing_mm / std::min(spec.density, 1.0);  // area per length of line
+  if (spec.pattern == InfillPattern::Concentric) return concentric(shape, spec.spacing_mm, pitch);
+  const geo::BBox2 b = bbox(shape.rings);
+  if (b.empty()) return {};
+  const double m = 1.0;  // mm of margin: every line crosses the whole region
+  const geo::Rings lines = pattern_lines(spec, geo::to_mm(b.min_x) - m, geo::to_mm(b.min_y) - m,
+                                         geo::to_mm(b.max_x) + m, geo::to_mm(b.max_y) + m);
+  if (lines.empty()) return {};
+  return clip_and_link(lines, shape, spec, pitch);
+}
+
+}  // namespace tranche::toolpath

@@ -1,0 +1,297 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "fixtures.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/infill_patterns.h"
+#include "geometry/toolpath/lightning.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+using schema::InfillPattern;
+
+namespace {
+
+constexpr double kSpacing = 0.45;
+
+PatternSpec spec_of(InfillPattern p, double density = 0.2, double z = 0.3) {
+  PatternSpec s;
+  s.pattern = p;
+  s.angle_deg = 45;
+  s.spacing_mm = kSpacing;
+  s.density = density;
+  s.z_mm = z;
+  s.artificial_inset_mm = 0.5 * kSpacing;
+  s.link_max_mm = 5 * kSpacing / density;
+  return s;
+}
+
+double length_mm(const std::vector<FillPath>& fps) {
+  double l = 0;
+  for (const auto& fp : fps)
+    for (size_t i = 1; i < fp.pts.size(); ++i)
+      l += std::hypot(geo::to_mm(fp.pts[i].X - fp.pts[i - 1].X), geo::to_mm(fp.pts[i].Y - fp.pts[i - 1].Y));
+  return l;
+}
+
+// Whether every point of every path lies in `rings` or within `tol_mm` of their border.
+bool all_inside(const std::vector<FillPath>& fps, const geo::Rings& rings, double tol_mm) {
+  const geo::Rings grown = offset(rings, tol_mm);
+  for (const auto& fp : fps)
+    for (const auto& p : fp.pts) {
+      int w = 0;
+      for (const auto& r : grown)
+        if (ClipperLib::PointInPolygon(p, r) != 0) w += ClipperLib::Orientation(r) ? 1 : -1;
+      if (w <= 0) return false;
+    }
+  return true;
+}
+
+const InfillPattern kLinePatterns[] = {InfillPattern::Grid, InfillPattern::Triangles, InfillPattern::Cubic,
+                                       InfillPattern::Honeycomb, InfillPattern::Gyroid, InfillPattern::Concentric};
+
+std::string name_of(InfillPattern p) { return std::string(schema::enum_value_name(schema::EnumType::InfillPattern, static_cast<int>(p))); }
+
+}  // namespace
+
+// Coverage: a pattern at density ρ lays ρ·area/spacing of line on a square. The lines are clipped
+// at the border: on a square 3 to 9 pitches wide (20 mm at 20 % and 40 %, 40 mm at 10 %, where
+// the triangles' pitch is 13.5 mm), the lines against the border
+// differ from the ideal infinite pattern's by up to ±10 % (a line more or less, a wave cut at
+// another phase), and the gyroid's section varies from −6 % to +9 % with z about its mean, so the
+// lines alone are within ±12 %. The links along the border add at most one bead round the
+// region (4 × 20 mm × spacing).
+TEST_CASE("infill patterns: extruded area on a 20 mm square is density × area") {
+  for (double density : {0.1, 0.2, 0.4}) {
+    const double side = density < 0.2 ? 40 : 20, whole = side * side;
+    const geo::Rings sq{test::rect(0, 0, side, side)};
+    for (InfillPattern p : kLinePatterns) {
+      CAPTURE(name_of(p));
+      CAPTURE(density);
+      PatternSpec unlinked = spec_of(p, density);
+      unlinked.link_max_mm = 0;
+      auto lines = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), unlinked);
+      const double extruded = length_mm(lines) * kSpacing;
+      CHECK(extruded > 0.88 * density * whole);
+      // Concentric: its first loop touches the border (half a spacing inside it), which adds
+      // (pitch − spacing) / 2 of band along the border: 4·side·(pitch − spacing)/2 of area.
+      const double pitch = kSpacing / density;
+      const double extra = p == InfillPattern::Concentric ? 4 * side * 0.5 * (pitch - kSpacing) * density : 0.0;
+      CHECK(extruded < 1.12 * density * whole + extra);
+      auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(p, density));
+      const double linked = length_mm(fps) * kSpacing;
+      CHECK(linked >= extruded - 1e-6);
+      CHECK(linked <= extruded + 4 * side * kSpacing);
+      // A path's area is that of its lines (links left out): their length times spacing / ρ.
+      double area = 0;
+      for (const auto& fp : fps) area += fp.area_mm2;
+      CHECK(area == doctest::Approx(extruded / density).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("infill patterns: the gyroid's plastic averaged over a period of z is density × area") {
+  const geo::Rings sq{test::rect(0, 0, 40, 40)};
+  const double period = 2.45 * kSpacing / 0.2;
+  double sum = 0;
+  const int n = 16;
+  for (int k = 0; k < n; ++k) {
+    PatternSpec s = spec_of(InfillPattern::Gyroid, 0.2, (k + 0.5) * period / n);
+    s.link_max_mm = 0;
+    sum += length_mm(pattern_fill(fill_shape(sq, geo::EdgeKind::Real), s)) * kSpacing;
+  }
+  // 2.45 is the mean to 1 %; the clipped border of a 40 mm square (7 periods) adds up to 3 %.
+  CHECK(sum / n == doctest::Approx(0.2 * 1600).epsilon(0.04));
+}
+
+TEST_CASE("infill patterns: every line stays inside the region, also round a hole") {
+  const geo::Rings ring{test::rect(0, 0, 20, 20), test::rect(6, 6, 12, 11, false)};
+  for (InfillPattern p : kLinePatterns) {
+    CAPTURE(name_of(p));
+    auto fps = pattern_fill(fill_shape(ring, geo::EdgeKind::Real), spec_of(p));
+    REQUIRE(!fps.empty());
+    CHECK(all_inside(fps, ring, 0.001));
+    // Nothing in the hole (shrunk by the 1 µm tolerance).
+    const geo::Rings hole{test::rect(6.01, 6.01, 11.99, 10.99)};
+    for (const auto& fp : fps)
+      for (const auto& pt : fp.pts) CHECK(ClipperLib::PointInPolygon(pt, hole[0]) == 0);
+  }
+}
+
+// Continuity: the links along the border join the pieces. On the square, without links a grid
+// at 20 % has 18 separate lines and the triangles 27; with them a handful of paths remain (the
+// links may not run over one another, so some ends stay apart).
+TEST_CASE("infill patterns: pieces are linked along the border into few paths") {
+  const geo::Rings sq{test::rect(0, 0, 20, 20)};
+  for (InfillPattern p : kLinePatterns) {
+    CAPTURE(name_of(p));
+    PatternSpec unlinked = spec_of(p);
+    unlinked.link_max_mm = 0;
+    const auto pieces = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), unlinked);
+    const auto paths = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(p));
+    CAPTURE(pieces.size());
+    CAPTURE(paths.size());
+    CHECK(paths.size() <= 6);
+    if (p != InfillPattern::Concentric) CHECK(paths.size() * 3 <= pieces.size());
+    // Linked paths are made of the same pieces (plus the links): no plastic lost.
+    CHECK(length_mm(paths) >= length_mm(pieces) - 1e-3);
+  }
+}
+
+TEST_CASE("infill patterns: cubic and gyroid change with z, the others stack") {
+  const geo::Rings sq{test::rect(0, 0, 20, 20)};
+  auto at = [&](InfillPattern p, double z) { return pattern_lines(spec_of(p, 0.2, z), 0, 0, 20, 20); };
+  for (InfillPattern p : {InfillPattern::Cubic, InfillPattern::Gyroid}) {
+    CAPTURE(name_of(p));
+    CHECK(at(p, 0.3) != at(p, 1.3));
+  }
+  for (InfillPattern p : {InfillPattern::Grid, InfillPattern::Triangles, InfillPattern::Honeycomb}) {
+    CAPTURE(name_of(p));
+    CHECK(at(p, 0.3) == at(p, 1.3));
+  }
+  // Cubic: each set moves across by Δz/√2; after a whole pitch·√2 of z the lines are back.
+  const double pitch = 3 * kSpacing / 0.2;
+  const auto a = pattern_lines(spec_of(InfillPattern::Cubic, 0.2, 0.0), -50, -50, 50, 50);
+  const auto b = pattern_lines(spec_of(InfillPattern::Cubic, 0.2, 0.1), -50, -50, 50, 50);
+  REQUIRE(!a.empty());
+  REQUIRE(!b.empty());
+  // The first line of the first set (at 45°) moved across by 0.1/√2 mm.
+  auto across = [](const geo::Ring& l) {
+    const double c = std::cos(M_PI / 4), s = std::sin(M_PI / 4);
+    return -geo::to_mm(l[0].X) * s + geo::to_mm(l[0].Y) * c;
+  };
+  CHECK(std::fmod(across(b[0]) - across(a[0]) + pitch, pitch) == doctest::Approx(0.1 / std::sqrt(2.0)).epsilon(1e-3));
+  // The gyroid repeats after one period of z.
+  const double period = 2.45 * kSpacing / 0.2;
+  CHECK(pattern_lines(spec_of(InfillPattern::Gyroid, 0.2, 0.5), 0, 0, 20, 20).size() ==
+        pattern_lines(spec_of(InfillPattern::Gyroid, 0.2, 0.5 + period), 0, 0, 20, 20).size());
+}
+
+TEST_CASE("infill patterns: density 0 gives nothing") {
+  const geo::Rings sq{test::rect(0, 0, 20, 20)};
+  for (InfillPattern p : kLinePatterns) CHECK(pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(p, 0.0)).empty());
+}
+
+TEST_CASE("infill patterns: line ends keep half a bead from a cut to a solid region") {
+  // The right edge (x = 20) is artificial: a solid region lies beyond it.
+  FillShape shape = fill_shape({test::rect(0, 0, 20, 20)}, geo::EdgeKind::Real);
+  shape.kinds[0][1] = geo::EdgeKind::Artificial;  // (20,0) -> (20,20)
+  for (InfillPattern p : kLinePatterns) {
+    CAPTURE(name_of(p));
+    auto fps = pattern_fill(shape, spec_of(p));
+    REQUIRE(!fps.empty());
+    double max_x = -1e9;
+    for (const auto& fp : fps)
+      for (const auto& pt : fp.pts) max_x = std::max(max_x, geo::to_mm(pt.X));
+    CHECK(max_x <= 20 - 0.5 * kSpacing + 0.01);
+    CHECK(max_x >= 20 - 0.5 * kSpacing - 0.6 * kSpacing / 0.2 * 3);
+  }
+}
+
+TEST_CASE("infill patterns: concentric loops follow the border inward") {
+  const geo::Rings sq{test::rect(0, 0, 20, 20)};
+  auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
+  REQUIRE(!fps.empty());
+  // The first point is on the outermost loop, half a spacing inside the border.
+  const auto& p = fps[0].pts[0];
+  const double d = std::min({geo::to_mm(p.X), geo::to_mm(p.Y), 20 - geo::to_mm(p.X), 20 - geo::to_mm(p.Y)});
+  CHECK(d == doctest::Approx(0.5 * kSpacing).epsilon(0.02));
+  // Loops 2.25 mm apart on a 20 mm square, at 0.225, 2.475, 4.725, 6.975 and 9.225 mm from the
+  // border (the last one 1.55 mm wide), joined into one path by four crossings.
+  CHECK(fps.size() == 1);
+  // No point nearer the border than the outermost loop; a few on it (its sides).
+  int outer = 0;
+  for (const auto& q : fps[0].pts) {
+    const double x = geo::to_mm(q.X), y = geo::to_mm(q.Y);
+    const double e = std::min({x, 20 - x, y, 20 - y});
+    CHECK(e >= 0.225 - 0.01);
+    if (e < 0.225 + 0.01) ++outer;
+  }
+  CHECK(outer >= 4);
+  CHECK(length_mm(fps) == doctest::Approx(4 * (19.55 + 15.05 + 10.55 + 6.05 + 1.55) + 4 * 2.25).epsilon(0.02));
+}
+
+TEST_CASE("lightning: the region under a top, carried down as a shrinking cone") {
+  // 30 layers of a 20 mm square (0.2 mm), 3 top layers: layers 27-29 are solid; 26 holds them up.
+  const double h = 0.2, step = h * std::tan(40 * M_PI / 180);
+  const auto layers = test::stack(30, h, geo::Polygon{test::rect(0, 0, 20, 20), {}});
+  const auto regions = lightning_regions(layers, 3, 40);
+  REQUIRE(regions.size() == 30);
+  auto region_at = [&](int i) { return area_mm2(regions[static_cast<size_t>(i)]); };
+  CHECK(region_at(26) == doctest::Approx(400).epsilon(1e-3));
+  const double side = 20 - 2 * 3 * step;  // three layers further down
+  CHECK(region_at(23) == doctest::Approx(side * side).epsilon(0.01));
+  double last = 1e9;
+  for (int i = 26; i >= 0; --i) {
+    const double a = region_at(i);
+    CHECK(a <= last + 1e-6);
+    last = a;
+  }
+  // Layer 0 is 26 layers under the lowest solid one: the cone has shrunk by 26 steps a side.
+  const double side0 = 20 - 2 * 26 * step;
+  CHECK(region_at(0) == doctest::Approx(side0 * side0).epsilon(0.01));
+  // The top layers themselves hold up nothing more.
+  for (int i = 27; i < 30; ++i) CHECK(regions[static_cast<size_t>(i)].empty());
+}
+
+TEST_CASE("lightning: a small top over a wide part needs only a small cone") {
+  // A 40 mm square, 10 layers, then a 6 mm square tower: its layers' top is at layer 19.
+  std::vector<geo::Layer> layers = test::stack(20, 0.2, geo::Polygon{test::rect(0, 0, 40, 40), {}});
+  for (int i = 10; i < 20; ++i) layers[static_cast<size_t>(i)].islands[0].shape = geo::Polygon{test::rect(17, 17, 23, 23), {}};
+  const double step = 0.2 * std::tan(40 * M_PI / 180);
+  const auto regions = lightning_regions(layers, 3, 40);
+  // Layer 6 holds up the slab's top (layers 7-9 solid) less where the tower goes on, and the
+  // tower's own top (layers 17-19 solid), 10 layers up from 6, shrunk by 10 steps a side.
+  const double tower = 6 - 2 * 10 * step;
+  CHECK(area_mm2(regions[6]) == doctest::Approx(1600 - 36 + tower * tower).epsilon(0.002));
+  // Inside the tower, only its own cone: at layer 12, 4 steps.
+  const double t12 = 6 - 2 * 4 * step;
+  CHECK(area_mm2(regions[12]) == doctest::Approx(t12 * t12).epsilon(0.01));
+}
+
+TEST_CASE("lightning: a tall stack, the cone from its top down to the bed") {
+  // 120 layers, 3 of them solid under the top: layer 0 is 117 layers under the lowest solid one,
+  // its cone shrunk by 116 steps (here 0.05 mm a layer: a lean of atan(0.05 / 0.2)).
+  const double h = 0.2, step = 0.05;
+  const auto layers = test::stack(120, h, geo::Polygon{test::rect(0, 0, 30, 30), {}});
+  const auto regions = lightning_regions(layers, 3, std::atan(step / h) * 180 / M_PI);
+  const double side = 30 - 2 * 116 * step;
+  CHECK(area_mm2(regions[0]) == doctest::Approx(side * side).epsilon(0.01));
+}
+
+TEST_CASE("lightning: the cache gives every layer task the same regions") {
+  const auto layers = test::stack(30, 0.2, geo::Polygon{test::rect(0, 0, 20, 20), {}});
+  const LightningCache cache;
+  const auto direct = lightning_regions(layers, 3, LightningCache::kLeanDeg);
+  for (int i = 0; i < 30; ++i) CHECK(cache.region(layers, i, 3) == direct[static_cast<size_t>(i)]);
+  CHECK(cache.region(layers, 40, 3).empty());  // past the top
+  CHECK(area_mm2(cache.region(layers, 27, 0)) > 0);  // no top layers: the skin is the top itself
+}
+
+// Regression: each layer's shrink rounded the region's concave corners (round holes) with new
+// arcs, and the vertices piled up layer after layer until one offset took minutes (the bench's
+// plate with holes). The regions are simplified before each shrink: their size stays that of the
+// outline's.
+TEST_CASE("lightning: a plate with round holes keeps its regions' vertex count bounded") {
+  geo::Polygon plate{test::rect(0, 0, 40, 40), {}};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      geo::Ring hole;
+      for (int k = 63; k >= 0; --k)  // clockwise
+        hole.push_back(geo::to_point(5 + 10 * i + 2 * std::cos(k * M_PI / 32), 5 + 10 * j + 2 * std::sin(k * M_PI / 32)));
+      plate.holes.push_back(hole);
+    }
+  const auto layers = test::stack(60, 0.2, plate);
+  const auto regions = lightning_regions(layers, 3, 40);
+  size_t outline = 4 + 16 * 64, most = 0;
+  for (const auto& r : regions) {
+    size_t v = 0;
+    for (const auto& ring : r) v += ring.size();
+    most = std::max(most, v);
+  }
+  CAPTURE(most);
+  CHECK(most > 0);
+  CHECK(most < 4 * outline);
+}
