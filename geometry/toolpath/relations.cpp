@@ -177,7 +177,8 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
   if (spec.shell_mm > 0) {
     // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
     // Cheap when the neighbour covers the fill grown by the band (straight walls, the inside).
-    geo::Rings reach = offset(fill, spec.shell_mm);
+    // Arcs to 25 µm: what is made solid is a band a bead or more wide, offset and clipped again.
+    geo::Rings reach = offset_coarse(fill, spec.shell_mm);
     EdgeGrid reach_grid(reach);
     const geo::BBox2 rbox = bbox(reach);
     // Eroding the intersection of the n layers is eroding each (a disc lies in all of them iff
@@ -193,7 +194,7 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
       // shrink.
       geo::Rings open = difference(reach, near(all, rbox));
       if (open.empty()) return;
-      geo::Rings part = intersection(fill, offset(open, spec.shell_mm));
+      geo::Rings part = intersection(fill, offset_coarse(open, spec.shell_mm));
       solid = solid.empty() ? std::move(part) : union_of(solid, part);
     };
     if (spec.top_layers > 0) shell(1, spec.top_layers);
