@@ -33,7 +33,8 @@ double lines_length(const geo::Rings& lines);
 // Length (mm) of the closed rings of `outline` that lies inside `region`.
 double length_inside(const geo::Rings& outline, const geo::Rings& region);
 
-// Whether `piece` (one connected overhang) is a bridge over the material `below`: held by two
+// Whether `piece` (one connected overhang) is a bridge over the material `below`: at least 2 mm
+// across somewhere (a narrower sliver is a curved underside's, printed by the walls), held by two
 // separate holds, or by one along three quarters of its outer outline (a ceiling), and no point
 // of it further than max_bridge/2 from a hold. `reach_mm`: the overhang's reach (the piece ends
 // that far from `below`); `hold_mm`: how far outside the piece a hold may lie (the reach plus a

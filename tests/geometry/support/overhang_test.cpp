@@ -58,6 +58,17 @@ TEST_CASE("overhang: a ledge held on one side only, or a cap round a stem, is no
   CHECK(over(R(rect(0, 0, 8, 8)), walls).empty());
 }
 
+TEST_CASE("overhang: a sliver held all round but nowhere 2 mm across (a dome closing) is supported, not bridged") {
+  // A ceiling ring 1.2 mm wide round a 6 mm opening, walls all round it below: once a bridge.
+  geo::Rings below{rect(0, 0, 10, 10), rect(1.2, 1.2, 8.8, 8.8, false)};
+  geo::Rings island{rect(0, 0, 10, 10), rect(2.4, 2.4, 7.6, 7.6, false)};
+  auto o = over(island, below);
+  CHECK(toolpath::area_mm2(o) > 4 * 5 * 0.8);
+  // The same ring 3 mm wide is a bridge.
+  geo::Rings wide{rect(0, 0, 10, 10), rect(4.2, 4.2, 5.8, 5.8, false)};
+  CHECK(over(wide, below).empty());
+}
+
 TEST_CASE("overhang: a slope's thin sliver round a funnel is held on one side: supported, not bridged") {
   // A square funnel widening by 0.27 mm a layer (53° from vertical): a 0.07 mm ring beyond the reach.
   geo::Rings below{rect(0, 0, 20, 20)};
