@@ -171,17 +171,29 @@ TEST_CASE("plate e2e: a delta's round bed centred on 0: the model lands on 0, 0"
   CHECK_FALSE(app::slice(o, report).ok());
 }
 
+namespace {
+// Two boxes, 6 and 4 mm tall, arranged 50 mm apart: the plate the sequential tests print.
+struct TwoBoxes {
+  plate::PlateOptions p;
+  pipeline::SliceOptions o;
+};
+TwoBoxes two_boxes(const test::TempDir& dir, std::vector<std::pair<std::string, std::string>> sets) {
+  TwoBoxes t;
+  t.p.files = {(dir / "tall.stl").string(), (dir / "low.stl").string()};
+  REQUIRE(geo::write_stl_binary(t.p.files[0], geo::box({15, 15, 6})).ok());
+  REQUIRE(geo::write_stl_binary(t.p.files[1], geo::box({15, 15, 4})).ok());
+  t.p.arrange = plate::ArrangeMode::Always;
+  t.p.spacing_mm = 50;
+  t.o = options(dir);
+  t.o.model = t.p.files[0];
+  t.o.sets = std::move(sets);
+  return t;
+}
+}  // namespace
+
 TEST_CASE("plate e2e: print_order = sequential prints each object whole, lowest first, rising between them") {
   test::TempDir dir("plate-sequential");
-  plate::PlateOptions p;
-  p.files = {(dir / "tall.stl").string(), (dir / "low.stl").string()};
-  REQUIRE(geo::write_stl_binary(p.files[0], geo::box({15, 15, 6})).ok());
-  REQUIRE(geo::write_stl_binary(p.files[1], geo::box({15, 15, 4})).ok());
-  p.arrange = plate::ArrangeMode::Always;
-  p.spacing_mm = 50;
-  pipeline::SliceOptions o = options(dir);
-  o.model = p.files[0];
-  o.sets = {{"print_order", "sequential"}, {"skirt_loops", "0"}};
+  auto [p, o] = two_boxes(dir, {{"print_order", "sequential"}, {"skirt_loops", "0"}});
   Report report;
   auto r = app::slice(o, p, report);
   REQUIRE_MESSAGE(r.ok(), r.error().to_string());
@@ -343,15 +355,7 @@ TEST_CASE("command line: usage errors say what an option needs") {
 
 TEST_CASE("plate e2e: a raft under a sequential plate is refused before any file is written") {
   test::TempDir dir("plate-sequential-raft");
-  plate::PlateOptions p;
-  p.files = {(dir / "a.stl").string(), (dir / "b.stl").string()};
-  REQUIRE(geo::write_stl_binary(p.files[0], geo::box({15, 15, 6})).ok());
-  REQUIRE(geo::write_stl_binary(p.files[1], geo::box({15, 15, 4})).ok());
-  p.arrange = plate::ArrangeMode::Always;
-  p.spacing_mm = 50;
-  pipeline::SliceOptions o = options(dir);
-  o.model = p.files[0];
-  o.sets = {{"print_order", "sequential"}, {"raft_layers", "2"}};
+  auto [p, o] = two_boxes(dir, {{"print_order", "sequential"}, {"raft_layers", "2"}});
   Report report;
   auto r = app::slice(o, p, report);
   REQUIRE_FALSE(r.ok());
