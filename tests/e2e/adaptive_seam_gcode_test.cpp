@@ -11,31 +11,20 @@
 #include "gcode_reader.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
+#include "mesh_run.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
 
 namespace {
 
-using Sets = std::vector<std::pair<std::string, std::string>>;
+using test::Sets;
 
 Result<pipeline::SliceSummary> run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
                                    const std::string& rules, const Sets& sets, std::vector<Warning>* warnings = nullptr) {
-  pipeline::SliceOptions o;
-  o.quiet = true;
-  o.model = (dir / (name + ".stl")).string();
-  REQUIRE(geo::write_stl_binary(o.model, mesh).ok());
-  o.output_gcode = (dir / (name + ".gcode")).string();
-  if (!rules.empty()) {
-    o.rules = {(dir / (name + ".rules")).string()};
-    std::ofstream(o.rules[0], std::ios::binary) << rules;
-  }
-  o.sets = {{"skirt_loops", "0"}};
-  o.sets.insert(o.sets.end(), sets.begin(), sets.end());
-  Report report;
-  auto r = app::slice(o, report);
-  if (warnings) *warnings = report.warnings();
-  return r;
+  test::MeshRun r = test::slice_mesh(dir, name, mesh, sets, rules);
+  if (warnings) *warnings = r.warnings;
+  return r.result;
 }
 
 test::Gcode slice(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh, const Sets& sets,

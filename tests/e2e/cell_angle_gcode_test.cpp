@@ -10,6 +10,7 @@
 #include "gcode_reader.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
+#include "mesh_run.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
@@ -17,22 +18,10 @@ using namespace tranche;
 namespace {
 
 test::Gcode slice(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh, const std::string& rules,
-                  const std::vector<std::pair<std::string, std::string>>& sets = {}) {
-  pipeline::SliceOptions o;
-  o.quiet = true;
-  o.model = (dir / (name + ".stl")).string();
-  REQUIRE(geo::write_stl_binary(o.model, mesh).ok());
-  o.output_gcode = (dir / (name + ".gcode")).string();
-  if (!rules.empty()) {
-    o.rules = {(dir / (name + ".rules")).string()};
-    std::ofstream(o.rules[0], std::ios::binary) << rules;
-  }
-  o.sets = {{"skirt_loops", "0"}};
-  o.sets.insert(o.sets.end(), sets.begin(), sets.end());
-  Report report;
-  auto r = app::slice(o, report);
-  REQUIRE_MESSAGE(r.ok(), (r.ok() ? "" : r.error().to_string()));
-  return test::read_gcode(o.output_gcode);
+                  const test::Sets& sets = {}) {
+  test::MeshRun r = test::slice_mesh(dir, name, mesh, sets, rules);
+  REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
+  return r.g;
 }
 
 // The directions (undirected, degrees in [0, 180)) of the fill lines of `type` on `layer`:

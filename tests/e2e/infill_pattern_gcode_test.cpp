@@ -14,35 +14,18 @@
 #include "gcode_reader.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
+#include "mesh_run.h"
 #include "tests/support/fixtures.h"
 
 using namespace tranche;
 
 namespace {
 
-struct Run {
-  Result<pipeline::SliceSummary> result = Error{"", "not run"};
-  test::Gcode g;
-};
+using Run = test::MeshRun;
 
-Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
-        std::vector<std::pair<std::string, std::string>> sets, const std::string& rules = "") {
-  pipeline::SliceOptions o;
-  o.quiet = true;
-  o.model = (dir / (name + ".stl")).string();
-  REQUIRE(geo::write_stl_binary(o.model, mesh).ok());
-  o.output_gcode = (dir / (name + ".gcode")).string();
-  if (!rules.empty()) {
-    o.rules.push_back((dir / (name + ".rules")).string());
-    std::ofstream(o.rules.back()) << rules;
-  }
-  o.sets = {{"skirt_loops", "0"}};
-  o.sets.insert(o.sets.end(), sets.begin(), sets.end());
-  Report report;
-  Run r;
-  r.result = app::slice(o, report);
-  if (r.result.ok()) r.g = test::read_gcode(o.output_gcode);
-  return r;
+Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh, const test::Sets& sets,
+        const std::string& rules = "") {
+  return test::slice_mesh(dir, name, mesh, sets, rules);
 }
 
 bool extrudes(const test::Move& m) { return m.has_xy && m.de > 0; }

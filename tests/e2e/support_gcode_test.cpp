@@ -9,6 +9,7 @@
 
 #include "apps/slice_command.h"
 #include "gcode_reader.h"
+#include "mesh_run.h"
 #include "geometry/mesh/primitives.h"
 #include "geometry/mesh/stl.h"
 #include "tests/support/fixtures.h"
@@ -17,32 +18,11 @@ using namespace tranche;
 
 namespace {
 
-struct Run {
-  Result<pipeline::SliceSummary> result = Error{"", "not run"};
-  std::vector<Warning> warnings;
-  test::Gcode g;
-};
+using Run = test::MeshRun;
 
-Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh,
-        std::vector<std::pair<std::string, std::string>> sets, const std::string& rules = "", bool strict = false) {
-  pipeline::SliceOptions o;
-  o.quiet = true;
-  o.strict = strict;
-  o.model = (dir / (name + ".stl")).string();
-  REQUIRE(geo::write_stl_binary(o.model, mesh).ok());
-  o.output_gcode = (dir / (name + ".gcode")).string();
-  if (!rules.empty()) {
-    o.rules.push_back((dir / (name + ".rules")).string());
-    std::ofstream(o.rules.back()) << rules;
-  }
-  o.sets = {{"skirt_loops", "0"}};
-  o.sets.insert(o.sets.end(), sets.begin(), sets.end());
-  Report report;
-  Run r;
-  r.result = app::slice(o, report);
-  r.warnings = report.warnings();
-  if (r.result.ok()) r.g = test::read_gcode(o.output_gcode);
-  return r;
+Run run(const test::TempDir& dir, const std::string& name, const geo::Mesh& mesh, const test::Sets& sets,
+        const std::string& rules = "", bool strict = false) {
+  return test::slice_mesh(dir, name, mesh, sets, rules, strict);
 }
 
 // A 4 mm square stem 10 mm high under a 20 mm square cap 2 mm thick: centred on the bed (100, 100).
