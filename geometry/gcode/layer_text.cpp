@@ -8,6 +8,7 @@
 #include "geometry/plan/context_fill.h"
 #include "geometry/plan/walk.h"
 #include "geometry/toolpath/flow.h"
+#include "runtime/schema/type_names.h"
 
 namespace tranche::gcode {
 
@@ -35,40 +36,6 @@ std::string fan_command(Flavor flavor, double ratio) {
 }
 
 namespace {
-
-std::string_view type_name(PathKind k) {
-  switch (k) {
-    case PathKind::OuterPerimeter:
-      return "External perimeter";
-    case PathKind::InnerPerimeter:
-      return "Perimeter";
-    case PathKind::Infill:
-      return "Internal infill";
-    case PathKind::SolidInfill:
-      return "Solid infill";
-    case PathKind::TopSolid:
-      return "Top solid infill";
-    case PathKind::BottomSolid:
-      return "Solid infill";
-    case PathKind::Bridge:
-      return "Bridge infill";
-    case PathKind::Skirt:
-      return "Skirt/Brim";
-    case PathKind::Ironing:
-      return "Ironing";
-    case PathKind::Custom:
-      return "Custom";
-    case PathKind::Support:
-      return "Support material";
-    case PathKind::SupportInterface:
-      return "Support material interface";
-    case PathKind::Brim:
-      return "Skirt/Brim";
-    case PathKind::GapFill:
-      return "Gap fill";
-  }
-  return "Custom";
-}
 
 class Formatter final : public ctx::LineSink {
  public:
@@ -259,7 +226,7 @@ class Formatter final : public ctx::LineSink {
     auto& t = out_.text;
     if (k != type_ || !has_type_) {
       t += ";TYPE:";
-      t += type_name(k);
+      t += schema::gcode_type_name(k);
       t += '\n';
       type_ = k;
       has_type_ = true;

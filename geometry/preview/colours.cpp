@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/schema/type_names.h"
+
 namespace tranche::preview {
 
 using schema::PathKind;
@@ -41,37 +43,8 @@ Rgb kind_colour(PathKind k) {
 }
 
 std::string_view kind_label(PathKind k) {
-  switch (k) {
-    case PathKind::OuterPerimeter:
-      return "External perimeter";
-    case PathKind::InnerPerimeter:
-      return "Perimeter";
-    case PathKind::Infill:
-      return "Internal infill";
-    case PathKind::SolidInfill:
-      return "Solid infill";
-    case PathKind::TopSolid:
-      return "Top solid infill";
-    case PathKind::BottomSolid:
-      return "Bottom solid infill";
-    case PathKind::Bridge:
-      return "Bridge infill";
-    case PathKind::Skirt:
-      return "Skirt/Brim";
-    case PathKind::Ironing:
-      return "Ironing";
-    case PathKind::Custom:
-      return "Custom";
-    case PathKind::Support:
-      return "Support material";
-    case PathKind::SupportInterface:
-      return "Support material interface";
-    case PathKind::Brim:
-      return "Skirt/Brim";
-    case PathKind::GapFill:
-      return "Gap fill";
-  }
-  return "Custom";
+  // The G-code's name, but bottom skins told apart from internal solid infill.
+  return k == PathKind::BottomSolid ? "Bottom solid infill" : schema::gcode_type_name(k);
 }
 
 const std::array<Rgb, kRangeColourCount>& range_colours() {

@@ -336,22 +336,7 @@ std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& sh
   uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
   std::vector<Poly> polys = clip_lines(lines, region, grid, lone, pitch_mm * geo::kUnitsPerMm);
   polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
-  std::vector<FillPath> out;
-  for (const Poly& P : polys) {
-    FillPath fp;
-    for (size_t k = 0; k < P.pts.size(); ++k) {
-      const geo::Point q = to_pt(P.pts[k].u, P.pts[k].v);
-      if (!fp.pts.empty()) {
-        if (fp.pts.back() == q) continue;
-        fp.border.push_back(P.border[k - 1]);
-      }
-      fp.pts.push_back(q);
-    }
-    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
-    fp.runs = P.runs;
-    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
-  }
-  return out;
+  return zigzag_detail::to_fill_paths(polys, [](UV p) { return to_pt(p.u, p.v); });
 }
 
 // The point of ring r nearest to p: inserted as a vertex, the ring turned to start there.

@@ -282,26 +282,10 @@ Poly Zigzag::to_poly(const Run& run) const {
 
 // Polylines to paths in bed coordinates (points that round together merged).
 std::vector<FillPath> Zigzag::to_paths(const std::vector<Poly>& chains) const {
-  std::vector<FillPath> out;
-  auto to_xy = [&](UV p) {
+  return zigzag_detail::to_fill_paths(chains, [&](UV p) {
     return geo::Point(static_cast<coord_t>(std::llround(p.u * c_ - p.v * s_)),
                       static_cast<coord_t>(std::llround(p.u * s_ + p.v * c_)));
-  };
-  for (const Poly& P : chains) {
-    FillPath fp;
-    for (size_t k = 0; k < P.pts.size(); ++k) {
-      geo::Point q = to_xy(P.pts[k]);
-      if (!fp.pts.empty()) {
-        if (fp.pts.back() == q) continue;
-        fp.border.push_back(P.border[k - 1]);
-      }
-      fp.pts.push_back(q);
-    }
-    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
-    fp.runs = P.runs;
-    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
-  }
-  return out;
+  });
 }
 
 // Inset rings, scan lines, crossings, runs, polylines, links along the border, paths.

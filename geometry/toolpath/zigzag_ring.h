@@ -1,4 +1,4 @@
-// Internal to the zig-zag fill (zigzag.cpp, zigzag_links.cpp): points and rings in the frame
+// Internal to the zig-zag fill and the infill patterns (zigzag.cpp, zigzag_links.cpp, infill_patterns.cpp): points and rings in the frame
 // rotated so that the fill lines are horizontal, walks round a ring, and the polylines the runs
 // of lines become. Not for use outside geometry/toolpath.
 #pragma once
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/core/layer.h"
+#include "geometry/toolpath/zigzag.h"
 #include "runtime/schema/schema.h"
 
 namespace tranche::toolpath::zigzag_detail {
@@ -59,5 +60,27 @@ struct Poly {
 // Polylines joined end to start by links along the border of `rings` at most `limit` units long
 // (FillSpec::link_max_mm), greedily from each polyline in turn; `polys` unchanged when limit <= 0.
 std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit);
+
+// Polylines to paths, each point through `to_point` (UV -> bed point), points that round
+// together merged; paths of fewer than two points dropped.
+template <class ToPoint>
+std::vector<FillPath> to_fill_paths(const std::vector<Poly>& polys, ToPoint to_point) {
+  std::vector<FillPath> out;
+  for (const Poly& P : polys) {
+    FillPath fp;
+    for (size_t k = 0; k < P.pts.size(); ++k) {
+      const geo::Point q = to_point(P.pts[k]);
+      if (!fp.pts.empty()) {
+        if (fp.pts.back() == q) continue;
+        fp.border.push_back(P.border[k - 1]);
+      }
+      fp.pts.push_back(q);
+    }
+    fp.area_mm2 = P.area * geo::kMmPerUnit * geo::kMmPerUnit;
+    fp.runs = P.runs;
+    if (fp.pts.size() >= 2) out.push_back(std::move(fp));
+  }
+  return out;
+}
 
 }  // namespace tranche::toolpath::zigzag_detail
