@@ -10,48 +10,17 @@ run of moves pulling E back (bench/gcode_counts.py).
 """
 import math
 import os
-import re
 import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gcode_counts  # noqa: E402
-
-WORD = re.compile(r'([XYZE])(-?\d*\.?\d+)')
-
+import gcode_moves  # noqa: E402
 
 def infill_filament(path):
     """Filament (mm) extruded under ;TYPE:Internal infill."""
-    rel_e = False
-    e = 0.0
-    kind = ''
-    out = 0.0
-    with open(path, errors='replace') as f:
-        for raw in f:
-            if raw.startswith(';TYPE:'):
-                kind = raw[6:].strip()
-                continue
-            line = raw.split(';', 1)[0].strip()
-            if not line:
-                continue
-            cmd = line.split(None, 1)[0].upper()
-            if cmd == 'M82':
-                rel_e = False
-            elif cmd == 'M83':
-                rel_e = True
-            elif cmd == 'G92':
-                for k, v in WORD.findall(line.upper()):
-                    if k == 'E':
-                        e = float(v)
-            elif cmd in ('G0', 'G1'):
-                w = dict(WORD.findall(line.upper()))
-                if 'E' in w:
-                    ne = float(w['E']) + (e if rel_e else 0)
-                    de = ne - e
-                    e = ne
-                    if de > 0 and ('X' in w or 'Y' in w) and kind == 'Internal infill':
-                        out += de
-    return out
+    return sum(de for kind, x0, y0, x, y, de in gcode_moves.moves(path)
+               if de > 0 and (x, y) != (x0, y0) and kind == 'Internal infill')
 
 
 def row(model, pattern, slicer, path, secs, verdict='-'):

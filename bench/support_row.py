@@ -9,55 +9,28 @@ support extrusion). Handles M82/M83 and G92.
 """
 import json
 import math
-import re
 import sys
 
-WORD = re.compile(r'([XYZE])(-?\d*\.?\d+)')
-
+import gcode_moves
 
 def support_costs(path, filament=1.75):
-    rel_e, x, y, e = False, 0.0, 0.0, 0.0
-    kind = ''
+    """Support plastic (mm³) and support trips: travels that start or end at a support extrusion."""
     fed = 0.0
     trips = 0
     trip_from_support = None  # open trip: did it start at a support extrusion?
     last_was_support = False
-    for raw in open(path, errors='replace'):
-        if raw.startswith(';TYPE:'):
-            kind = raw[6:].strip().lower()
-            continue
-        line = raw.split(';', 1)[0].strip()
-        if not line:
-            continue
-        cmd = line.split(None, 1)[0].upper()
-        if cmd == 'M82':
-            rel_e = False
-        elif cmd == 'M83':
-            rel_e = True
-        elif cmd == 'G92':
-            for k, v in WORD.findall(line):
-                if k == 'E':
-                    e = float(v)
-        elif cmd in ('G0', 'G1'):
-            w = dict(WORD.findall(line))
-            nx, ny = float(w.get('X', x)), float(w.get('Y', y))
-            de = 0.0
-            if 'E' in w:
-                v = float(w['E'])
-                de = v if rel_e else v - e
-                e = e + v if rel_e else v
-            moved = (nx, ny) != (x, y)
-            if moved and de > 0:
-                sup = 'support' in kind
-                if sup:
-                    fed += de
-                if trip_from_support is not None and (trip_from_support or sup):
-                    trips += 1
-                trip_from_support = None
-                last_was_support = sup
-            elif moved and trip_from_support is None:
-                trip_from_support = last_was_support
-            x, y = nx, ny
+    for kind, x0, y0, x, y, de in gcode_moves.moves(path):
+        moved = (x, y) != (x0, y0)
+        if moved and de > 0:
+            sup = 'support' in kind.lower()
+            if sup:
+                fed += de
+            if trip_from_support is not None and (trip_from_support or sup):
+                trips += 1
+            trip_from_support = None
+            last_was_support = sup
+        elif moved and trip_from_support is None:
+            trip_from_support = last_was_support
     return fed * math.pi * (filament / 2) ** 2, trips
 
 
