@@ -76,6 +76,17 @@ void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbour
 
 namespace {
 
+// A new cell of the island for the fill path `fp` (its index, area, angle), returned.
+CellPlan& add_cell(IslandPlan& ip, const toolpath::FillPath& fp, double angle, bool solid) {
+  CellPlan cell;
+  cell.index = static_cast<int>(ip.cells.size());
+  cell.area_mm2 = fp.area_mm2;
+  cell.fill_angle_deg = angle;
+  cell.solid = solid;
+  ip.cells.push_back(cell);
+  return ip.cells.back();
+}
+
 // What the paths of one fill region share.
 struct RegionFill {
   const FillRegion& region;
@@ -229,15 +240,7 @@ void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::Infi
     ps.link_max_mm = f.fs.link_max_mm;
     fps = toolpath::pattern_fill(toolpath::region_shape(f.region.rings, f.borders, 0.25 * f.w), ps);
   }
-  for (toolpath::FillPath& fp : fps) {
-    CellPlan cell;
-    cell.index = static_cast<int>(ip.cells.size());
-    cell.area_mm2 = fp.area_mm2;
-    cell.fill_angle_deg = angle;
-    cell.solid = false;
-    ip.cells.push_back(cell);
-    add_cell_path(ip, nest, f, ip.cells.back(), fp, 1.0);
-  }
+  for (toolpath::FillPath& fp : fps) add_cell_path(ip, nest, f, add_cell(ip, fp, angle, false), fp, 1.0);
 }
 
 // One fill region's cells: a zig-zag per cell, on the region's grid of lines at `angle` (or the
@@ -262,14 +265,7 @@ Status build_cells(IslandPlan& ip, Nest& nest, const FillRegion& region, const s
   // Edges within a quarter bead of the island's fill border are on it (see region_shape).
   std::vector<toolpath::FillPath> fps = toolpath::zigzag(toolpath::region_shape(region.rings, borders, 0.25 * w), f.fs);
   const size_t first = ip.cells.size();
-  for (const toolpath::FillPath& fp : fps) {
-    CellPlan cell;
-    cell.index = static_cast<int>(ip.cells.size());
-    cell.area_mm2 = fp.area_mm2;
-    cell.fill_angle_deg = angle;
-    cell.solid = solid;
-    ip.cells.push_back(cell);
-  }
+  for (const toolpath::FillPath& fp : fps) add_cell(ip, fp, angle, solid);
   return place_cells(ip, nest, f, fps, first, density);
 }
 
@@ -461,15 +457,10 @@ Status build_support(IslandPlan& ip, Nest& nest, double height_mm, PathKind kind
     fs.origin_mm = 0;  // a grid fixed to the bed: lines stand on the lines below
     fs.link_max_mm = 5 * pitch;
     for (toolpath::FillPath& fp : toolpath::zigzag(toolpath::fill_shape(inner, geo::EdgeKind::Real), fs)) {
-      CellPlan cell;
-      cell.index = static_cast<int>(ip.cells.size());
-      cell.area_mm2 = fp.area_mm2;
-      cell.fill_angle_deg = angle;
-      cell.solid = iface;
-      ip.cells.push_back(cell);
+      const int cell = add_cell(ip, fp, angle, iface).index;
       PathPlan p;
       p.kind = kind;
-      p.cell = cell.index;
+      p.cell = cell;
       p.width = static_cast<float>(w);
       p.pts = std::move(fp.pts);
       p.border = std::move(fp.border);
