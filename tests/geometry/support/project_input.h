@@ -1,5 +1,5 @@
 // The support tests' input: a layer stack's contacts by layer, its keep-out the part grown by the
-// xy gap (as plan/support_pass makes it).
+// xy gap (as plan/support_pass makes it); a mushroom-shaped stack.
 #pragma once
 
 #include <vector>
@@ -7,6 +7,7 @@
 #include "geometry/support/support.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/relations.h"
+#include "tests/geometry/toolpath/fixtures.h"
 
 namespace tranche::test {
 
@@ -16,6 +17,14 @@ inline support::ProjectInput project_input(const std::vector<geo::Layer>& layers
   in.contacts.resize(layers.size());
   for (const auto& l : layers) in.keep_out.push_back(toolpath::offset(toolpath::material(l), xy_gap));
   return in;
+}
+
+// 0.2 mm layers: `stem` on the first `stem_layers`, `cap` on the `cap_layers` above.
+inline std::vector<geo::Layer> mushroom_stack(int stem_layers, int cap_layers, const geo::Ring& stem,
+                                              const geo::Ring& cap) {
+  auto layers = stack(stem_layers + cap_layers, 0.2, geo::Polygon{stem, {}});
+  for (size_t k = static_cast<size_t>(stem_layers); k < layers.size(); ++k) layers[k].islands[0].shape.outer = cap;
+  return layers;
 }
 
 }  // namespace tranche::test

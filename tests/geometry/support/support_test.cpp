@@ -14,11 +14,7 @@ using test::rect;
 namespace {
 
 // A mushroom: a 4 mm stem (layers 0..9) under a 12 mm cap (layers 10..14), 0.2 mm layers.
-std::vector<geo::Layer> mushroom() {
-  auto layers = test::stack(15, 0.2, geo::Polygon{rect(4, 4, 8, 8), {}});
-  for (size_t k = 10; k < 15; ++k) layers[k].islands[0].shape.outer = rect(0, 0, 12, 12);
-  return layers;
-}
+std::vector<geo::Layer> mushroom() { return test::mushroom_stack(10, 5, rect(4, 4, 8, 8), rect(0, 0, 12, 12)); }
 
 geo::Rings cap_overhang() { return toolpath::difference({rect(0, 0, 12, 12)}, toolpath::offset({rect(4, 4, 8, 8)}, 0.2)); }
 

@@ -13,11 +13,7 @@ using test::rect;
 namespace {
 
 // A 4 mm stem (layers 0..39) under a 24 mm cap (layers 40..44), 0.2 mm layers.
-std::vector<geo::Layer> mushroom() {
-  auto layers = test::stack(45, 0.2, geo::Polygon{rect(10, 10, 14, 14), {}});
-  for (size_t k = 40; k < 45; ++k) layers[k].islands[0].shape.outer = rect(0, 0, 24, 24);
-  return layers;
-}
+std::vector<geo::Layer> mushroom() { return test::mushroom_stack(40, 5, rect(10, 10, 14, 14), rect(0, 0, 24, 24)); }
 
 
 double area(const geo::Rings& r) { return toolpath::area_mm2(r); }
