@@ -188,7 +188,9 @@ Status LayerTask::path_level(IslandPlan* ip, PathPlan& p) {
 
 Status LayerTask::piece_level(PathPlan& p) {
   const size_t n = p.piece_count();
-  if (overhang_ && L > 0 && n > 0) p.overhang = toolpath::overhang_fractions(p.pts, p.width, nb_.below_grid());
+  if (overhang_ && L > 0 && n > 0)
+    p.overhang = toolpath::average_along(toolpath::overhang_fractions(p.pts, p.width, nb_.below_grid()), p.pts,
+                                         toolpath::kOverhangWindowMm);
   PropertyValues props = p.props;
   if (nest_.per_piece() && n > 0) {
     p.pieces.resize(n);

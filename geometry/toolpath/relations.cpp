@@ -90,6 +90,42 @@ std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, con
   return out;
 }
 
+std::vector<float> average_along(const std::vector<float>& values, const geo::Ring& pts, double window_mm) {
+  const size_t n = values.size();
+  if (n == 0 || pts.size() != n + 1) return values;
+  // at[i]: arc length (mm) where piece i starts; sum[i]: integral of the values up to there.
+  std::vector<double> at(n + 1, 0.0), sum(n + 1, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const double len = std::hypot(double(pts[i + 1].X - pts[i].X), double(pts[i + 1].Y - pts[i].Y)) / geo::kUnitsPerMm;
+    at[i + 1] = at[i] + len;
+    sum[i + 1] = sum[i] + len * double(values[i]);
+  }
+  const double total = at[n];
+  if (total <= 0) return values;
+  // Integral of the values from 0 to arc length s.
+  auto integral = [&](double s) {
+    s = std::clamp(s, 0.0, total);
+    size_t k = static_cast<size_t>(std::upper_bound(at.begin(), at.end(), s) - at.begin());
+    k = std::clamp<size_t>(k, 1, n);  // piece k - 1 holds s
+    return sum[k - 1] + (s - at[k - 1]) * double(values[k - 1]);
+  };
+  std::vector<float> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double len = at[i + 1] - at[i];
+    if (len >= window_mm) {
+      out[i] = values[i];
+      continue;
+    }
+    const double w = std::min(window_mm, total);
+    double lo = 0.5 * (at[i] + at[i + 1]) - 0.5 * w;
+    lo = std::clamp(lo, 0.0, total - w);
+    // Rounded to 1e-4, so that a bead wholly in the air stays exactly 1 (and one on the layer 0).
+    const double mean = std::round((integral(lo + w) - integral(lo)) / w * 1e4) * 1e-4;
+    out[i] = static_cast<float>(std::clamp(mean, 0.0, 1.0));
+  }
+  return out;
+}
+
 double fraction_on(const geo::Rings& island, const geo::Rings& other) {
   double a = area_mm2(island);
   if (a <= 0) return 0;

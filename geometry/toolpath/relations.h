@@ -61,6 +61,17 @@ class Neighbours {
 // three quarters of the piece.
 std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below);
 
+// How far along a path piece.overhang is averaged: a piece shorter than this takes the
+// length-weighted mean of the path over this length centred on its middle, so that the short
+// pieces of a curved wall do not flip a rule's speed back and forth.
+inline constexpr double kOverhangWindowMm = 2.0;
+
+// `values` (one per piece of the polyline `pts`) averaged along it: each piece gets the
+// length-weighted mean over max(window_mm, its length) of path centred on its middle, the
+// window shifted inward at the path's ends (the whole path when it is shorter). Zero-length
+// pieces take their neighbourhood's mean too.
+std::vector<float> average_along(const std::vector<float>& values, const geo::Ring& pts, double window_mm);
+
 // Fraction of `island` (area) lying on `other` (0..1); 0 for an empty island.
 double fraction_on(const geo::Rings& island, const geo::Rings& other);
 

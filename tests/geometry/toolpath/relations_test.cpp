@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/relations.h"
@@ -122,4 +124,46 @@ TEST_CASE("relations: vertical shell: the fill under a gentle slope's shells is 
   const auto s_shell = split_fill(geo::Rings{test::rect(1, 1, 19, 19)}, nb2, spec);
   CHECK(area_of(s_shell, PathKind::SolidInfill) == 0);
   CHECK(area_of(s_shell, PathKind::Infill) == Approx(area_of(s_plain, PathKind::Infill)));
+}
+
+TEST_CASE("relations: piece.overhang averaged along the path over short pieces, long pieces keep theirs") {
+  auto pt = [](double x) { return geo::Point(std::llround(x * geo::kUnitsPerMm), 0); };
+  // Pieces 0.2 mm long alternating 0 and 1 (a curved wall's noise), then a 5 mm piece at 0.6.
+  geo::Ring pts;
+  std::vector<float> v;
+  double x = 0;
+  pts.push_back(pt(x));
+  for (int i = 0; i < 20; ++i) {
+    x += 0.2;
+    pts.push_back(pt(x));
+    v.push_back(i % 2 ? 1.0f : 0.0f);
+  }
+  x += 5;
+  pts.push_back(pt(x));
+  v.push_back(0.6f);
+  auto a = average_along(v, pts, 1.0);
+  REQUIRE(a.size() == v.size());
+  // A short piece in the middle of the noise: the mean of the 1 mm around it (pieces 8..12: two
+  // ones of five).
+  CHECK(a[10] == Approx(0.4).epsilon(1e-3));
+  CHECK(a[1] == Approx(0.4).epsilon(1e-3));  // at the start, the window is moved inward (pieces 0..4)
+  CHECK(a[20] == Approx(0.6));                // a piece longer than the window keeps its value
+  // The last short piece's window (3.4..4.4 mm) reaches 0.4 mm into the long piece:
+  // (0.2 + 0.2 + 0.6·0.4) / 1.
+  CHECK(a[19] == Approx(0.64).epsilon(1e-3));
+  // A bead wholly in the air stays exactly 1 after averaging, and one wholly resting stays 0.
+  std::vector<float> ones(20, 1.0f), zeros(20, 0.0f);
+  geo::Ring short_pts(pts.begin(), pts.begin() + 21);
+  for (float f : average_along(ones, short_pts, 1.0)) CHECK(f == 1.0f);
+  for (float f : average_along(zeros, short_pts, 1.0)) CHECK(f == 0.0f);
+  // A path shorter than the window: every piece gets the whole path's mean.
+  geo::Ring two{pt(0), pt(0.2), pt(0.5)};
+  auto b = average_along({0.0f, 1.0f}, two, 1.0);
+  CHECK(b[0] == Approx(0.6).epsilon(1e-3));
+  CHECK(b[1] == Approx(0.6).epsilon(1e-3));
+  // Zero-length pieces and mismatched input do not produce NaN.
+  geo::Ring still{pt(1), pt(1), pt(1)};
+  auto c = average_along({0.3f, 0.7f}, still, 1.0);
+  CHECK(c[0] == 0.3f);
+  CHECK(average_along({0.5f}, geo::Ring{pt(0)}, 1.0) == std::vector<float>{0.5f});
 }
