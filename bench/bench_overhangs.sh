@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Overhanging walls (issue 14): the overhang speed steps of stdlib/defaults.rules and what gcheck
+# says of overhangs. Models (overhang_models.py): cups flaring 45° and 70° from vertical, a flat
+# shelf hanging 10 mm out on two sides; and the Stanford bunny (bench/peers/common.sh), where the
+# question is whether the steps flip the speed back and forth on a curved surface. Each sliced by
+# tranche with the steps (the default), without them (--set overhang_speeds=false), and by
+# PrusaSlicer 2.5 (bench/peers settings; it has no dynamic overhang speeds, it prints overhanging
+# wall pieces as "Overhang perimeter" at its bridge speed). Both with no slowdown for short layers,
+# so that every slower wall move is an overhang's. One table (bench/overhang_row.py): gcheck's
+# verdict, coverage, band coverage and unsupported area (the generated models), the wall length
+# printed slower than the wall's speed, the feed-rate changes and the extruding moves.
+# Measured (2026-11-26, this machine, `OUT=/tmp/o bench/bench_overhangs.sh build`): Stanford
+# bunny 16265 feed-rate changes with the steps, 12815 without (+27%; PrusaSlicer 26152), on 1.13 M
+# extruding moves; the walls' mean speed 34.6 against 34.9 mm/s. The 70° cup's walls 19.9 mm/s
+# with the steps, 34.8 without (every layer hangs 0.55 mm out: outer wall wholly in the air, inner
+# half); the 45° cup unchanged (0.2 mm a layer, 44% of the bead: the first step is 25 mm/s, the
+# outer wall's own speed); the shelf's first layer's walls slowed (34.6 → 34.1 mm/s over the print).
+# gcheck's unsupported area is the same with or without the steps and for PrusaSlicer (flares
+# 0 mm²: 0.55 mm a layer is within its allowance of nozzle/2 + layer height once opened by half a
+# nozzle; the shelf 191 mm² against PrusaSlicer's 197 on its first layer): it counts where plastic
+# is laid over air, not how, so it cannot tell a bridged shelf from loops in the air.
+#   bench/bench_overhangs.sh [BUILD_DIR]
+#   env: MODELS="flare_45 flare_70 shelf stanford_bunny" (default: all), SLICERS="tranche
+#        tranche_nosteps prusa", GCHECK=path/to/gcheck.py, OUT=dir to keep files.
+set -uo pipefail
+build=${1:-build}
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/peers/common.sh"
+bench_setup "$build" || { echo "bench_overhangs: cannot build tranche"; exit 1; }
+GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
+SLICERS=${SLICERS:-tranche tranche_nosteps prusa}
+out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-overhangs-XXXXXX")}
+[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
+mkdir -p "$out/models"
+export LC_ALL=C
+
+rows="$out/rows.tsv"
+: >"$rows"
+while read -r name model; do
+  [[ -n ${MODELS:-} && " $MODELS " != *" $name "* ]] && continue
+  [[ -f $model ]] || continue
+  for s in $SLICERS; do
+    g="$out/$name.$s.gcode"
+    case $s in
+      tranche) peer_cmd tranche "$model" "$g" && CMD+=(--set min_layer_time=0) || continue ;;
+      tranche_nosteps) peer_cmd tranche "$model" "$g" && CMD+=(--set min_layer_time=0 --set overhang_speeds=false) || continue ;;
+      prusa)
+        command -v prusa-slicer >/dev/null || continue
+        peer_cmd prusa "$model" "$g" && CMD+=(--slowdown-below-layer-time 0) || continue ;;
+      *) echo "bench_overhangs: unknown slicer $s" >&2; continue ;;
+    esac
+    env -u DISPLAY timeout 600 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
+    rc=$?
+    if [[ ! -s $g ]]; then
+      printf '%s\t%s\tfailed (exit %s: %s)\n' "$name" "$s" "$rc" "$(grep -v '^\s*$' "$out/$name.$s.log" | tail -1 | cut -c1-60)" >>"$rows"
+      continue
+    fi
+    js=""
+    if [[ $name != stanford_bunny && -f $GCHECK ]]; then
+      off=$(/usr/bin/python3 "$here/quality_row.py" --offset "$model" 100,100)
+      /usr/bin/python3 "$GCHECK" "$model" "$g" --offset="$off" --json "$out/$name.$s.json" >"$out/$name.$s.gcheck" 2>&1 &&
+        js="$out/$name.$s.json"
+    fi
+    /usr/bin/python3 "$here/overhang_row.py" "$name" "$s" "$g" $js >>"$rows"
+  done
+done < <(/usr/bin/python3 "$here/overhang_models.py" "$out/models"; bench_models stanford_bunny)
+/usr/bin/python3 "$here/overhang_row.py" --table "$rows"
+[[ -n ${OUT:-} ]] && echo "files kept in $out"

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Overhang models for bench_overhangs.sh, written as ASCII STL.
+
+overhang_models.py OUTDIR      writes NAME.stl for every model and prints "NAME PATH" lines
+
+  flare_45   a 32-sided cup flaring 45 deg from vertical: radius 6 mm at the bed to 16 mm at 10 mm
+  flare_70   the same flaring 70 deg: radius 6 mm to 17 mm over 4 mm
+  shelf      a 10 x 10 mm column 8 mm high under a 30 x 10 x 2 mm plate: 10 mm of flat shelf
+             hanging out on two sides
+"""
+import math
+import os
+import sys
+
+
+def frustum(r0, r1, h, n=32):
+    """Closed frustum, axis z, radius r0 at z = 0 and r1 at z = h (triangles CCW from outside)."""
+    ring = lambda r, z: [(r * math.cos(2 * math.pi * i / n), r * math.sin(2 * math.pi * i / n), z) for i in range(n)]
+    lo, hi = ring(r0, 0.0), ring(r1, h)
+    tris = []
+    for i in range(n):
+        j = (i + 1) % n
+        tris.append((lo[i], lo[j], hi[j]))
+        tris.append((lo[i], hi[j], hi[i]))
+        tris.append(((0.0, 0.0, 0.0), lo[j], lo[i]))
+        tris.append(((0.0, 0.0, h), hi[i], hi[j]))
+    return tris
+
+
+def box(x0, y0, z0, x1, y1, z1):
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    tris = []
+    for a, b, c, d in faces:
+        tris.append((v[a], v[b], v[c]))
+        tris.append((v[a], v[c], v[d]))
+    return tris
+
+
+def write_stl(path, tris, name):
+    with open(path, 'w') as f:
+        f.write(f'solid {name}\n')
+        for a, b, c in tris:
+            ux, uy, uz = (b[k] - a[k] for k in range(3))
+            vx, vy, vz = (c[k] - a[k] for k in range(3))
+            nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+            ln = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
+            f.write(f'facet normal {nx / ln:.6f} {ny / ln:.6f} {nz / ln:.6f}\n outer loop\n')
+            for p in (a, b, c):
+                f.write(f'  vertex {p[0]:.6f} {p[1]:.6f} {p[2]:.6f}\n')
+            f.write(' endloop\nendfacet\n')
+        f.write(f'endsolid {name}\n')
+
+
+MODELS = {
+    'flare_45': lambda: frustum(6.0, 16.0, 10.0),
+    'flare_70': lambda: frustum(6.0, 6.0 + 4.0 * math.tan(math.radians(70)), 4.0),
+    # Two shells touching at z = 8 (the slicers union them).
+    'shelf': lambda: box(10, 0, 0, 20, 10, 8) + box(0, 0, 8, 30, 10, 10),
+}
+
+if __name__ == '__main__':
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    for name, make in MODELS.items():
+        path = os.path.join(out, name + '.stl')
+        write_stl(path, make(), name)
+        print(name, path)
