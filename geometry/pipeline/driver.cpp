@@ -170,6 +170,9 @@ Status run_layers(const setup::PrintSetup& setup, const ctx::Cascade& cascade, c
       return;
     }
     ++written;
+    // Layers up to this one are done; those still running are above it and look at most
+    // top_layers/bottom_layers (≤ 100) down.
+    if (setup.layer_cache && item->index >= 101) setup.layer_cache->release(static_cast<size_t>(item->index - 101));
     if (progress) progress(written);
   };
   try {

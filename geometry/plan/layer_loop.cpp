@@ -25,7 +25,7 @@ using schema::Stage;
 class LayerTask final : public IslandHost {
  public:
   LayerTask(const setup::PrintSetup& s, const ctx::Cascade& c, int index)
-      : S(s), nest_(s, c), L(index), nb_(s.layers, index) {
+      : S(s), nest_(s, c), L(index), nb_(s.layers, index, s.layer_cache.get()) {
     needs_ = IslandNeeds::of(nest_);
     overhang_ = nest_.reads(FieldId::PieceOverhang);
   }

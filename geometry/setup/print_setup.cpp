@@ -107,6 +107,7 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
                               P[PropId::BedSizeX], P[PropId::BedSizeY]));
   }
   s->layers = simplify_layers(layers, s->simplify_mm, s->resolved_index);
+  s->layer_cache = std::make_shared<toolpath::LayerCache>(s->layers);
   s->table = ctx::LayerTable(s->layers.size());
   for (size_t i = 0; i < s->layers.size(); ++i) {
     const geo::Layer& l = s->layers[i];

@@ -18,6 +18,7 @@
 #include "geometry/support/support.h"
 #include "geometry/toolpath/lightning.h"
 #include "geometry/toolpath/motion.h"
+#include "geometry/toolpath/relations.h"
 #include "runtime/context/cascade.h"
 
 namespace tranche::setup {
@@ -55,6 +56,9 @@ struct PrintSetup {
   toolpath::MotionLimits motion;
   geo::Rings skirt_around;      // what the skirt surrounds: the convex hull of layer 0
   double simplify_mm = 0.0125;  // mm: island outlines are simplified this much (PrusaSlicer's resolution)
+  // What the layer tasks ask of each of `layers` (material, grids, shrunk material), computed
+  // once for the print; its contents are filled on first use, from any thread.
+  std::shared_ptr<toolpath::LayerCache> layer_cache;
   // The print's hooks (start and end G-code) and the header read the print's context with layer
   // 0's layer fields, and layer 0's layer-stage properties (its temperatures).
   ctx::Context hook_ctx;

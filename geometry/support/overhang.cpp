@@ -1,9 +1,11 @@
 #include "geometry/support/overhang.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
 
 namespace tranche::support {
 
@@ -53,34 +55,58 @@ double lines_length(const Rings& lines) {
   return len;
 }
 
-double length_inside(const Rings& outline, const Rings& region) {
-  if (outline.empty() || region.empty()) return 0;
-  return lines_length(clip_loops(outline, region, true));
-}
-
-bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double reach_mm, double hold_mm) {
-  if (max_bridge_mm <= 0 || below.empty()) return false;
+bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, double hold_mm) {
+  if (max_bridge_mm <= 0 || below.empty() || piece.empty()) return false;
   // Nowhere kMinBridgeMm across: the sliver a curved underside adds on each layer (the belly of a
   // figure, the inside of a dome closing), held all round but printed by the walls leaning out,
   // not by lines spanning anything. On the Stanford bunny these were 860 mm² printed in the air.
   if (toolpath::offset_coarse(piece, -0.5 * kMinBridgeMm).empty()) return false;
-  const Rings zone = toolpath::offset_coarse(piece, hold_mm);
-  const Rings near_below = toolpath::near(below, toolpath::bbox(zone));
-  const Rings holds = toolpath::intersection(zone, near_below);
-  if (toolpath::area_mm2(holds) <= 0) return false;
-  // Two-sided: two separate holds, or one hold all round its outer outline (a ceiling on four
-  // walls: the outline runs a reach from the walls). Holes do not count: a slope's sliver round a
-  // funnel is held along its inner edge only, its outer edge further out than the reach.
-  if (components(holds).size() < 2) {
-    Rings outers;
-    double outline = 0;
-    for (const geo::Ring& r : piece)
-      if (ClipperLib::Orientation(r)) outers.push_back(r), outline += geo::length_mm(r);
-    if (length_inside(outers, toolpath::offset_coarse(near_below, reach_mm + 0.01)) < 0.75 * outline) return false;
+  // Straight lines across the piece in one direction, as bridge infill lays them: a line spans
+  // when both its ends, carried on by hold_mm, land on the layer below and it is at most
+  // max_bridge long. The piece is a bridge when, in the best of 18 directions, lines that span
+  // make at least half of the lines' length (PrusaSlicer's bridge detector asks the same of a
+  // bridge surface: a direction whose lines are anchored at both ends). A cap's rim or a curved
+  // underside's crescent, held along one edge only, has no such direction whatever its holds.
+  const geo::BBox2 box = toolpath::bbox(piece);
+  const double margin = hold_mm + 1;
+  geo::BBox2 grown = box;
+  grown.min_x -= geo::to_units(margin), grown.min_y -= geo::to_units(margin);
+  grown.max_x += geo::to_units(margin), grown.max_y += geo::to_units(margin);
+  const Rings near_below = toolpath::near(below, grown);
+  if (near_below.empty()) return false;
+  const toolpath::EdgeGrid piece_grid(piece), below_grid(near_below);
+  const double cx = 0.5 * (double(box.min_x) + double(box.max_x)), cy = 0.5 * (double(box.min_y) + double(box.max_y));
+  const double half = 0.5 * std::hypot(double(box.max_x - box.min_x), double(box.max_y - box.min_y)) +
+                      geo::kUnitsPerMm;  // a radius round the box's centre, a mm to spare
+  const double pitch = std::clamp(2 * half / 40, 0.2 * geo::kUnitsPerMm, 1.0 * geo::kUnitsPerMm);
+  const double hold = hold_mm * geo::kUnitsPerMm, longest = max_bridge_mm * geo::kUnitsPerMm;
+  auto at = [](double x, double y) { return geo::Point(std::llround(x), std::llround(y)); };
+  double best = 0;
+  for (int step = 0; step < 18; ++step) {
+    const double a = step * std::numbers::pi / 18;
+    const double dx = std::cos(a), dy = std::sin(a);  // along the lines
+    double spanned = 0, total = 0;
+    // Lines off the grid of vertices by an odd number of units: none runs through a vertex.
+    for (double off = -half + 0.5 * pitch + 37; off < half; off += pitch) {
+      const double ox = cx - dy * off, oy = cy + dx * off;
+      const geo::Point A = at(ox - dx * half, oy - dy * half), B = at(ox + dx * half, oy + dy * half);
+      const auto hits = piece_grid.hits(A, B);
+      if (hits.size() % 2 != 0) continue;  // grazing a vertex: this line says nothing
+      const double len = std::hypot(double(B.X - A.X), double(B.Y - A.Y));
+      for (size_t i = 0; i + 1 < hits.size(); i += 2) {
+        const double t0 = hits[i].t, t1 = hits[i + 1].t, l = (t1 - t0) * len;
+        total += l;
+        if (l > longest) continue;
+        const double x0 = double(A.X) + (double(B.X) - double(A.X)) * t0 - dx * hold;
+        const double y0 = double(A.Y) + (double(B.Y) - double(A.Y)) * t0 - dy * hold;
+        const double x1 = double(A.X) + (double(B.X) - double(A.X)) * t1 + dx * hold;
+        const double y1 = double(A.Y) + (double(B.Y) - double(A.Y)) * t1 + dy * hold;
+        if (below_grid.inside(at(x0, y0)) && below_grid.inside(at(x1, y1))) spanned += l;
+      }
+    }
+    if (total > 0) best = std::max(best, spanned / total);
   }
-  // Short enough: every point within half a span of a hold.
-  const Rings far = toolpath::difference(piece, toolpath::offset_coarse(holds, 0.5 * max_bridge_mm + hold_mm));
-  return toolpath::area_mm2(far) < 1e-3;
+  return best >= 0.5;
 }
 
 Rings overhang(const Rings& island, const Rings& below_reach, const Rings& below, const OverhangSpec& spec) {
@@ -94,7 +120,7 @@ Rings overhang(const Rings& island, const Rings& below_reach, const Rings& below
   const double speck = 0.25 * std::numbers::pi * spec.nozzle_mm * spec.nozzle_mm;
   for (Rings& piece : components(raw)) {
     if (toolpath::area_mm2(piece) < speck) continue;
-    if (is_bridge(piece, below, spec.max_bridge_mm, spec.reach_mm, spec.reach_mm + 0.5 * spec.nozzle_mm)) continue;
+    if (is_bridge(piece, below, spec.max_bridge_mm, spec.reach_mm + 0.5 * spec.nozzle_mm)) continue;
     out.insert(out.end(), piece.begin(), piece.end());
   }
   return out;

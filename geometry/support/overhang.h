@@ -30,17 +30,13 @@ std::vector<geo::Rings> components(const geo::Rings& region);
 geo::Rings clip_loops(const geo::Rings& loops, const geo::Rings& region, bool inside);
 // Length (mm) of open lines.
 double lines_length(const geo::Rings& lines);
-// Length (mm) of the closed rings of `outline` that lies inside `region`.
-double length_inside(const geo::Rings& outline, const geo::Rings& region);
 
 // Whether `piece` (one connected overhang) is a bridge over the material `below`: at least 2 mm
-// across somewhere (a narrower sliver is a curved underside's, printed by the walls), held by two
-// separate holds, or by one along three quarters of its outer outline (a ceiling), and no point
-// of it further than max_bridge/2 from a hold. `reach_mm`: the overhang's reach (the piece ends
-// that far from `below`); `hold_mm`: how far outside the piece a hold may lie (the reach plus a
-// little).
-bool is_bridge(const geo::Rings& piece, const geo::Rings& below, double max_bridge_mm, double reach_mm,
-               double hold_mm);
+// across somewhere (a narrower sliver is a curved underside's, printed by the walls), and in some
+// direction, straight lines across it that land on `below` at both ends (carried on by `hold_mm`,
+// how far outside the piece a hold may lie: the reach plus a little) and are at most
+// max_bridge_mm long make at least half of the lines' length.
+bool is_bridge(const geo::Rings& piece, const geo::Rings& below, double max_bridge_mm, double hold_mm);
 
 // What of `island` needs support: the island minus `below_reach` (the layer below grown by the
 // reach), without slivers, specks and bridges over `below`.

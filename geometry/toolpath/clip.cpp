@@ -23,12 +23,138 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
   return out;
 }
 
+// The raw offset curve of one closed ring by `delta` units (> 0: to the right of travel, out of
+// a counter-clockwise outer), for a positive-winding union to clean: each edge moved along its
+// normal, round joins where the offset opens (arcs to `steps_per_rad`), and where it closes
+// (the two moved edges overlap) the point where they cross when it lies within half of each,
+// else a detour through the vertex, whose loop the union drops. Clipper's own ClipperOffset
+// takes that detour at every closing vertex: on outlines sliced from curved meshes (most
+// vertices) it triples the points and makes every detour cross its neighbours, which was most of
+// the union's time.
+void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings& out) {
+  // Consecutive duplicates carry no direction.
+  geo::Ring p;
+  p.reserve(ring.size());
+  for (const auto& q : ring)
+    if (p.empty() || q != p.back()) p.push_back(q);
+  while (p.size() > 1 && p.front() == p.back()) p.pop_back();
+  const size_t n = p.size();
+  if (n < 3) return;
+  struct Normal {
+    double x, y, len;
+  };
+  std::vector<Normal> nrm(n);  // nrm[i]: edge p[i] → p[i + 1]
+  for (size_t i = 0; i < n; ++i) {
+    const geo::Point& a = p[i];
+    const geo::Point& b = p[(i + 1) % n];
+    const double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::sqrt(dx * dx + dy * dy);
+    nrm[i] = {dy / len, -dx / len, len};
+  }
+  // Joins whose turn needs no point between the two ends (one chord is within tolerance).
+  const double one_step = 1.5 / steps_per_rad;
+  const double cos_one_step = std::cos(one_step);
+  geo::Ring r;
+  r.reserve(n + n / 4 + 8);
+  auto at = [&](const geo::Point& v, double nx, double ny) {
+    r.emplace_back(static_cast<geo::coord_t>(std::llround(double(v.X) + nx * delta)),
+                   static_cast<geo::coord_t>(std::llround(double(v.Y) + ny * delta)));
+  };
+  for (size_t j = 0; j < n; ++j) {
+    const size_t k = j == 0 ? n - 1 : j - 1;  // edge k enters vertex j, edge j leaves it
+    const Normal& a = nrm[k];
+    const Normal& b = nrm[j];
+    const geo::Point& v = p[j];
+    const double sin_a = std::clamp(a.x * b.y - b.x * a.y, -1.0, 1.0);
+    const double cos_a = a.x * b.x + a.y * b.y;
+    if (std::abs(sin_a * delta) < 1.0 && cos_a > 0) {  // straight on, to within a unit
+      at(v, a.x, a.y);
+      continue;
+    }
+    if (sin_a * delta < 0) {  // the moved edges overlap
+      if (cos_a > 0) {
+        // From each end to the crossing: within half of each edge, so that what is left of
+        // every moved edge runs forward (a curve tighter than the offset turns them back, and
+        // the crossings would trace a spurious loop: a disc shrunk past its radius).
+        const double back = std::abs(delta) * std::abs(sin_a) / (1 + cos_a);
+        if (2 * back <= a.len && 2 * back <= b.len) {
+          const double f = 1 / (1 + cos_a);
+          at(v, (a.x + b.x) * f, (a.y + b.y) * f);
+          continue;
+        }
+      }
+      at(v, a.x, a.y);
+      r.push_back(v);
+      at(v, b.x, b.y);
+      continue;
+    }
+    // Round join from a to b.
+    at(v, a.x, a.y);
+    if (cos_a < cos_one_step) {
+      const double turn = std::atan2(sin_a, cos_a);
+      const int steps = std::max(static_cast<int>(std::lround(steps_per_rad * std::abs(turn))), 1);
+      const double c = std::cos(turn / steps), s = std::sin(turn / steps);
+      double x = a.x, y = a.y;
+      for (int i = 1; i < steps; ++i) {
+        const double x2 = x * c - y * s;
+        y = x * s + y * c;
+        x = x2;
+        at(v, x, y);
+      }
+    }
+    at(v, b.x, b.y);
+  }
+  out.push_back(std::move(r));
+}
+
 Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
   Rings out;
   if (region.empty()) return out;
-  ClipperOffset co(2.0, arc_tolerance);
-  co.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
-  co.Execute(out, mm * geo::kUnitsPerMm);
+  const double delta = mm * geo::kUnitsPerMm;
+  const double ad = std::abs(delta);
+  // Rings are counter-clockwise outers and clockwise holes; if the outermost is not, the whole
+  // list is the other way round (as Clipper's offset assumes too). The result is oriented as
+  // usual either way.
+  const geo::Ring* lowest = nullptr;
+  geo::coord_t low_y = 0, low_x = 0;
+  for (const auto& r : region)
+    for (const auto& q : r)
+      if (!lowest || q.Y > low_y || (q.Y == low_y && q.X < low_x)) lowest = &r, low_y = q.Y, low_x = q.X;
+  const bool flip = lowest && !ClipperLib::Orientation(*lowest);
+  Rings raw;
+  raw.reserve(region.size());
+  if (ad < 1.0) {
+    for (const auto& r : region)
+      if (r.size() >= 3) raw.push_back(r);
+  } else {
+    double tol = arc_tolerance > 0 ? std::min(arc_tolerance, 0.25 * ad) : 0.25 * ad;
+    double steps = M_PI / std::acos(1 - tol / ad);  // per full turn
+    steps = std::min(steps, ad * M_PI);
+    const double steps_per_rad = steps / (2 * M_PI);
+    for (const auto& r : region) {
+      if (!flip) {
+        raw_offset(r, delta, steps_per_rad, raw);
+      } else {
+        geo::Ring rev(r.rbegin(), r.rend());
+        raw_offset(rev, delta, steps_per_rad, raw);
+      }
+    }
+  }
+  if (raw.empty()) return out;
+  Clipper c;
+  c.AddPaths(raw, ClipperLib::ptSubject, true);
+  if (delta > 0) {
+    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftPositive, ClipperLib::pftPositive);
+  } else {
+    // Shrinking: the raw curves reversed inside a frame, whose negative winding is the result
+    // (the frame comes out first).
+    const ClipperLib::IntRect b = c.GetBounds();
+    geo::Ring frame{{b.left - 10, b.bottom + 10}, {b.right + 10, b.bottom + 10}, {b.right + 10, b.top - 10},
+                    {b.left - 10, b.top - 10}};
+    c.AddPath(frame, ClipperLib::ptSubject, true);
+    c.ReverseSolution(true);
+    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNegative, ClipperLib::pftNegative);
+    if (!out.empty()) out.erase(out.begin());
+  }
   return out;
 }
 }  // namespace

@@ -18,44 +18,7 @@ geo::Rings material(const geo::Layer& layer) {
   return out;
 }
 
-Neighbours::Neighbours(std::span<const geo::Layer> layers, int index) : layers_(layers), index_(index) {}
-
-const geo::Rings& Neighbours::layer(int k) {
-  int i = index_ + k;
-  auto it = material_.find(i);
-  if (it != material_.end()) return it->second;
-  geo::Rings m;
-  if (i >= 0 && static_cast<size_t>(i) < layers_.size()) m = material(layers_[static_cast<size_t>(i)]);
-  return material_.emplace(i, std::move(m)).first->second;
-}
-
-const geo::Rings& Neighbours::all_above(int n) {
-  while (static_cast<int>(above_.size()) < n) {
-    int k = static_cast<int>(above_.size()) + 1;
-    above_.push_back(k == 1 ? layer(1) : intersection(above_.back(), layer(k)));
-  }
-  return above_[static_cast<size_t>(n - 1)];
-}
-
-const geo::Rings& Neighbours::all_below(int n) {
-  while (static_cast<int>(below_.size()) < n) {
-    int k = static_cast<int>(below_.size()) + 1;
-    below_.push_back(k == 1 ? layer(-1) : intersection(below_.back(), layer(-k)));
-  }
-  return below_[static_cast<size_t>(n - 1)];
-}
-
-const EdgeGrid& Neighbours::grid(int k) {
-  auto it = grids_.find(k);
-  if (it != grids_.end()) return it->second;
-  return grids_.emplace(k, EdgeGrid(layer(k))).first->second;
-}
-
-bool Neighbours::covers(int k, const geo::Rings& region, const EdgeGrid& region_grid) {
-  int i = index_ + k;
-  if (i < 0 || static_cast<size_t>(i) >= layers_.size()) return false;
-  const geo::Rings& m = layer(k);
-  const EdgeGrid& g = grid(k);
+bool covers(const geo::Rings& m, const EdgeGrid& g, const geo::Rings& region, const EdgeGrid& region_grid) {
   for (const auto& r : region) {
     if (r.empty()) continue;
     if (!g.inside(r.front())) return false;
@@ -67,6 +30,113 @@ bool Neighbours::covers(int k, const geo::Rings& region, const EdgeGrid& region_
   for (const auto& r : m)
     if (!r.empty() && !ClipperLib::Orientation(r) && region_grid.inside(r.front())) return false;
   return true;
+}
+
+namespace {
+LayerCache::Eroded erode(const geo::Rings& m, double mm) {
+  LayerCache::Eroded e;
+  e.rings = offset_coarse(m, -mm);
+  e.grid = EdgeGrid(e.rings);
+  return e;
+}
+}  // namespace
+
+LayerCache::LayerCache(std::span<const geo::Layer> layers) : layers_(layers), slots_(new Slot[layers.size()]) {}
+
+const geo::Rings& LayerCache::material_locked(size_t i, Slot& s) {
+  if (!s.has_material) {
+    s.material = toolpath::material(layers_[i]);
+    s.has_material = true;
+  }
+  return s.material;
+}
+
+const geo::Rings& LayerCache::material(size_t i) {
+  Slot& s = slots_[i];
+  std::lock_guard lock(s.mutex);
+  return material_locked(i, s);
+}
+
+const EdgeGrid& LayerCache::grid(size_t i) {
+  Slot& s = slots_[i];
+  std::lock_guard lock(s.mutex);
+  if (!s.has_grid) {
+    s.grid = EdgeGrid(material_locked(i, s));
+    s.has_grid = true;
+  }
+  return s.grid;
+}
+
+const LayerCache::Eroded& LayerCache::eroded(size_t i, double mm) {
+  Slot& s = slots_[i];
+  std::lock_guard lock(s.mutex);
+  for (const auto& [d, e] : s.eroded)
+    if (d == mm) return *e;
+  s.eroded.emplace_back(mm, std::make_unique<Eroded>(erode(material_locked(i, s), mm)));
+  return *s.eroded.back().second;
+}
+
+void LayerCache::release(size_t i) {
+  if (i >= layers_.size()) return;
+  Slot& s = slots_[i];
+  std::lock_guard lock(s.mutex);
+  s.has_material = s.has_grid = false;
+  geo::Rings().swap(s.material);
+  s.grid = EdgeGrid();
+  s.eroded.clear();
+}
+
+Neighbours::Neighbours(std::span<const geo::Layer> layers, int index, LayerCache* cache)
+    : layers_(layers), index_(index), cache_(cache && cache->size() == layers.size() ? cache : nullptr) {}
+
+const geo::Rings& Neighbours::layer(int k) {
+  int i = index_ + k;
+  const bool in = i >= 0 && static_cast<size_t>(i) < layers_.size();
+  if (in && cache_) return cache_->material(static_cast<size_t>(i));
+  auto it = material_.find(i);
+  if (it != material_.end()) return it->second;
+  geo::Rings m;
+  if (in) m = material(layers_[static_cast<size_t>(i)]);
+  return material_.emplace(i, std::move(m)).first->second;
+}
+
+const EdgeGrid& Neighbours::grid(int k) {
+  const int i = index_ + k;
+  if (cache_ && i >= 0 && static_cast<size_t>(i) < layers_.size()) return cache_->grid(static_cast<size_t>(i));
+  auto it = grids_.find(k);
+  if (it != grids_.end()) return it->second;
+  return grids_.emplace(k, EdgeGrid(layer(k))).first->second;
+}
+
+bool Neighbours::covers(int k, const geo::Rings& region, const EdgeGrid& region_grid) {
+  int i = index_ + k;
+  if (i < 0 || static_cast<size_t>(i) >= layers_.size()) return false;
+  return toolpath::covers(layer(k), grid(k), region, region_grid);
+}
+
+const LayerCache::Eroded* Neighbours::eroded(int k, double mm) {
+  const int i = index_ + k;
+  if (i < 0 || static_cast<size_t>(i) >= layers_.size()) return nullptr;
+  if (cache_) return &cache_->eroded(static_cast<size_t>(i), mm);
+  auto key = std::make_pair(k, mm);
+  auto it = eroded_.find(key);
+  if (it != eroded_.end()) return &it->second;
+  return &eroded_.emplace(key, erode(layer(k), mm)).first->second;
+}
+
+const geo::Rings* Neighbours::all_eroded(int sign, int n, double mm) {
+  sign = sign > 0 ? 1 : -1;
+  auto& v = all_eroded_[std::make_pair(sign, mm)];
+  while (static_cast<int>(v.size()) < n) {
+    const int k = static_cast<int>(v.size()) + 1;
+    const LayerCache::Eroded* e = eroded(sign * k, mm);
+    if (!e || (k > 1 && !v.back()))
+      v.emplace_back();
+    else
+      v.emplace_back(k == 1 ? e->rings : intersection(*v.back(), e->rings));
+  }
+  const auto& r = v[static_cast<size_t>(n - 1)];
+  return r ? &*r : nullptr;
 }
 
 std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below) {
@@ -133,43 +203,6 @@ double fraction_on(const geo::Rings& island, const geo::Rings& other) {
   return std::clamp(on / a, 0.0, 1.0);
 }
 
-const geo::Rings& Neighbours::keep_sparse(int top, int bottom) {
-  auto key = std::make_pair(top, bottom);
-  auto it = keep_.find(key);
-  if (it != keep_.end()) return it->second;
-  // The intersection of n layers in one sweep: with n − 1 clockwise rectangles around
-  // everything, exactly the points inside all n layers have a positive winding number.
-  geo::Rings all;
-  int n = 0;
-  bool outside = false;
-  auto add = [&](int k) {
-    int i = index_ + k;
-    if (i < 0 || static_cast<size_t>(i) >= layers_.size()) outside = true;
-    const auto& m = layer(k);
-    all.insert(all.end(), m.begin(), m.end());
-    ++n;
-  };
-  for (int k = 1; k <= top; ++k) add(k);
-  for (int k = 1; k <= bottom; ++k) add(-k);
-  geo::Rings result;
-  if (n == 0) {
-    result = layer(0);
-  } else if (!outside) {
-    geo::BBox2 b = bbox(all);
-    if (!b.empty()) {
-      geo::Ring frame{{b.min_x - 1000, b.min_y - 1000},
-                      {b.min_x - 1000, b.max_y + 1000},
-                      {b.max_x + 1000, b.max_y + 1000},
-                      {b.max_x + 1000, b.min_y - 1000}};
-      for (int i = 1; i < n; ++i) all.push_back(frame);
-      ClipperLib::Clipper c;
-      c.AddPaths(all, ClipperLib::ptSubject, true);
-      c.Execute(ClipperLib::ctUnion, result, ClipperLib::pftPositive, ClipperLib::pftPositive);
-    }
-  }
-  return keep_.emplace(key, std::move(result)).first->second;
-}
-
 namespace {
 // Drops rings of tiny area (slivers left by booleans), and holes whose outer went with them
 // cannot occur: Clipper nests holes inside outers larger than them.
@@ -212,25 +245,20 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
   for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
   if (spec.shell_mm > 0) {
     // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
-    // Cheap when the neighbour covers the fill grown by the band (straight walls, the inside).
-    // Arcs to 25 µm: what is made solid is a band a bead or more wide, offset and clipped again.
-    geo::Rings reach = offset_coarse(fill, spec.shell_mm);
-    EdgeGrid reach_grid(reach);
-    const geo::BBox2 rbox = bbox(reach);
-    // Eroding the intersection of the n layers is eroding each (a disc lies in all of them iff
-    // it lies in each): one offset per side instead of one per layer.
+    // That is the fill outside the neighbours shrunk by shell_mm (a disc lies in all of them iff
+    // it lies in each): each layer is shrunk once for the print (LayerCache), not once per
+    // island and neighbour. Arcs to 25 µm: what is made solid is a band a bead or more wide.
+    const double s = spec.shell_mm;
     auto shell = [&](int sign, int n) {
       bool covered = true;
-      for (int k = 1; k <= n && covered; ++k) covered = nb.covers(sign * k, reach, reach_grid);
+      for (int k = 1; k <= n && covered; ++k) {
+        const LayerCache::Eroded* e = nb.eroded(sign * k, s);
+        covered = e && covers(e->rings, e->grid, fill, fill_grid);
+      }
       if (covered) return;
-      const geo::Rings& all = sign > 0 ? nb.all_above(n) : nb.all_below(n);
-      if (all.empty()) return;  // a neighbour outside the print: the fill is solid already
-      // fill − erode(all) = fill ∩ dilate(the complement of all): only the complement within
-      // the fill's reach matters, a sliver on a slope, far cheaper to grow than the layer to
-      // shrink.
-      geo::Rings open = difference(reach, near(all, rbox));
-      if (open.empty()) return;
-      geo::Rings part = intersection(fill, offset_coarse(open, spec.shell_mm));
+      const geo::Rings* inner = nb.all_eroded(sign, n, s);
+      if (!inner) return;  // a neighbour outside the print: the fill is solid already
+      geo::Rings part = difference(fill, near(*inner, box));
       solid = solid.empty() ? std::move(part) : union_of(solid, part);
     };
     if (spec.top_layers > 0) shell(1, spec.top_layers);

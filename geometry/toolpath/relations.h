@@ -4,6 +4,9 @@
 #pragma once
 
 #include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -17,12 +20,50 @@ namespace tranche::toolpath {
 // A layer's material as rings (outer CCW, holes CW, non-zero fill).
 geo::Rings material(const geo::Layer& layer);
 
+// Whether `m` (rings with their grid `g`) covers all of `region` (with its grid): exact segment
+// and point tests, much cheaper than a boolean; touching counts as not covered.
+bool covers(const geo::Rings& m, const EdgeGrid& g, const geo::Rings& region, const EdgeGrid& region_grid);
+
+// What the layer tasks ask of each layer, computed once for the whole print and shared by them
+// (thread-safe): its material as rings and as an edge grid, and its material shrunk by a depth
+// (the vertical shell's test, asked of each layer by the three or so layers on either side).
+// What is returned stays valid until release(i), which the caller does only when no task can
+// still ask for layer i (the layer loop: once every layer up to i + 100, the farthest a layer
+// looks, is done).
+class LayerCache {
+ public:
+  explicit LayerCache(std::span<const geo::Layer> layers);
+  size_t size() const { return layers_.size(); }
+  const geo::Rings& material(size_t i);
+  const EdgeGrid& grid(size_t i);
+  struct Eroded {
+    geo::Rings rings;  // arcs to 25 µm
+    EdgeGrid grid;
+  };
+  const Eroded& eroded(size_t i, double mm);
+  // Frees what layer i holds (asked again, it is computed again).
+  void release(size_t i);
+
+ private:
+  struct Slot {
+    std::mutex mutex;  // held while filling: a task asking for the same layer waits for it
+    bool has_material = false, has_grid = false;
+    geo::Rings material;
+    EdgeGrid grid;
+    std::vector<std::pair<double, std::unique_ptr<Eroded>>> eroded;  // by depth (one in practice)
+  };
+  const geo::Rings& material_locked(size_t i, Slot& s);
+  std::span<const geo::Layer> layers_;
+  std::unique_ptr<Slot[]> slots_;
+};
+
 // The neighbourhood of one layer; window results are computed on first use and cached, so a
 // layer whose islands all use the same top_layers/bottom_layers computes each window once.
-// Not thread-safe: one per layer task.
+// Not thread-safe: one per layer task. With a LayerCache, what is asked of single layers comes
+// from it (shared by every task).
 class Neighbours {
  public:
-  Neighbours(std::span<const geo::Layer> layers, int index);
+  Neighbours(std::span<const geo::Layer> layers, int index, LayerCache* cache = nullptr);
 
   int index() const { return index_; }
   // Material of layer index + k (k may be negative); empty outside the print.
@@ -32,13 +73,13 @@ class Neighbours {
     const int i = index_ + k;
     return i >= 0 && static_cast<size_t>(i) < layers_.size() ? &layers_[static_cast<size_t>(i)] : nullptr;
   }
-  // Region covered by all of the `n` layers above (n ≥ 1), resp. below; empty when any of them is
-  // outside the print (a top or the bed-side bottom).
-  const geo::Rings& all_above(int n);
-  const geo::Rings& all_below(int n);
-  // Where a spot stays sparse: covered by all `top` layers above and all `bottom` layers below
-  // (either count may be 0: that side does not matter).
-  const geo::Rings& keep_sparse(int top, int bottom);
+  // Layer index + k's material shrunk by `mm` (arcs to 25 µm) and its grid; null outside the
+  // print.
+  const LayerCache::Eroded* eroded(int k, double mm);
+  // The intersection of the `n` nearest layers above (sign > 0) or below (sign < 0), each shrunk
+  // by `mm`: where a spot is at least `mm` inside all of them. Null when one of them is outside
+  // the print (a top or the bed-side bottom).
+  const geo::Rings* all_eroded(int sign, int n, double mm);
   // Material below this layer as an edge grid (overhang, bridges).
   const EdgeGrid& below_grid() { return grid(-1); }
   // Material of layer index + k as an edge grid.
@@ -50,10 +91,13 @@ class Neighbours {
  private:
   std::span<const geo::Layer> layers_;
   int index_;
+  LayerCache* cache_;
   std::map<int, geo::Rings> material_;
-  std::vector<geo::Rings> above_, below_;  // [n-1] = intersection of the n nearest layers
-  std::map<std::pair<int, int>, geo::Rings> keep_;
   std::map<int, EdgeGrid> grids_;
+  std::map<std::pair<int, double>, LayerCache::Eroded> eroded_;  // without a cache
+  // (sign, mm) → [n-1] = intersection of the n nearest eroded layers on that side (empty
+  // optional: one is outside the print).
+  std::map<std::pair<int, double>, std::vector<std::optional<geo::Rings>>> all_eroded_;
 };
 
 // For each piece of the polyline `pts`, the fraction of a bead `width_mm` wide along it that

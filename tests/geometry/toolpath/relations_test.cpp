@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
@@ -166,4 +167,57 @@ TEST_CASE("relations: piece.overhang averaged along the path over short pieces, 
   auto c = average_along({0.3f, 0.7f}, still, 1.0);
   CHECK(c[0] == 0.3f);
   CHECK(average_along({0.5f}, geo::Ring{pt(0)}, 1.0) == std::vector<float>{0.5f});
+}
+
+TEST_CASE("relations: a LayerCache shared by threads gives what each layer computes alone, also after release") {
+  // A pyramid of squares with a hole: every layer's neighbours differ, so every region depends on
+  // what the cache returns. Each layer split with its own Neighbours and with one sharing the
+  // cache, from two threads at once; then every layer released and asked again.
+  std::vector<geo::Layer> layers = test::stack(40, 0.2, geo::Polygon{test::rect(0, 0, 30, 30), {}});
+  for (int i = 0; i < 40; ++i) {
+    const double d = 0.25 * i;
+    auto& shape = layers[static_cast<size_t>(i)].islands[0].shape;
+    shape.outer = test::rect(d, d, 30 - d, 30 - d);
+    shape.holes = {test::rect(12 - 0.1 * i, 12, 18, 18, false)};
+  }
+  SolidSpec spec;
+  spec.shell_mm = 0.5;
+  auto fill_of = [&](int i) {
+    const double d = 0.25 * i + 1;
+    return geo::Rings{test::rect(d, d, 30 - d, 30 - d), test::rect(11 - 0.1 * i, 11, 19, 19, false)};
+  };
+  auto areas = [&](const std::vector<FillRegion>& r) {
+    std::vector<double> a;
+    for (PathKind k : {PathKind::Bridge, PathKind::SolidInfill, PathKind::TopSolid, PathKind::Infill})
+      a.push_back(area_of(r, k));
+    return a;
+  };
+  std::vector<std::vector<double>> alone(40), shared(40), again(40);
+  for (int i = 0; i < 40; ++i) {
+    Neighbours nb(layers, i);
+    alone[static_cast<size_t>(i)] = areas(split_fill(fill_of(i), nb, spec));
+  }
+  LayerCache cache(layers);
+  auto run = [&](int from, int step, std::vector<std::vector<double>>& out) {
+    for (int i = from; i < 40; i += step) {
+      Neighbours nb(layers, i, &cache);
+      out[static_cast<size_t>(i)] = areas(split_fill(fill_of(i), nb, spec));
+    }
+  };
+  std::thread t([&] { run(0, 2, shared); });
+  run(1, 2, shared);
+  t.join();
+  for (size_t i = 0; i < 40; ++i) cache.release(i);
+  run(0, 1, again);
+  for (size_t i = 0; i < 40; ++i) {
+    INFO("layer " << i);
+    for (size_t k = 0; k < 4; ++k) {
+      CHECK(shared[i][k] == Approx(alone[i][k]).epsilon(1e-9));
+      CHECK(again[i][k] == Approx(alone[i][k]).epsilon(1e-9));
+    }
+  }
+  // The shell made some of the pyramid's fill solid, so the comparison saw it.
+  double solid = 0;
+  for (const auto& a : alone) solid += a[1];
+  CHECK(solid > 10);
 }
