@@ -297,7 +297,8 @@ uint32_t mix(uint64_t v) {
 // than the border, else to the border.
 void grow(Forest& f, const geo::Rings& need, const Layer& L) {
   if (need.empty()) return;
-  Lattice lat(need, 0.25 * L.radius);
+  // A quarter radius, at least 0.2 mm: at high densities a finer grid only costs time.
+  Lattice lat(need, std::max(0.25 * L.radius, 0.2 * geo::kUnitsPerMm));
   if (lat.pts.empty()) return;
   for (const Node& n : f)
     if (n.parent >= 0) lat.hold(n.p, f[static_cast<size_t>(n.parent)].p, L.radius);

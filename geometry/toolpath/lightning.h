@@ -11,7 +11,7 @@
 //               ("straighten"), nodes outside outline(i) and edges that leave it removed;
 //   regrounded  a tree whose root is no longer on the border is joined to the nearest node of
 //               another tree (merging them) or to the nearest point of the border;
-//   grown       points of need(i) on a grid of radius/4, nearest the border first, each not
+//   grown       points of need(i) on a grid of radius/4 (0.2 mm at least), nearest the border first, each not
 //               within `radius_mm` of a branch yet becomes a leaf: joined to the nearest tree
 //               node closer than the border, else to the border (a new tree anchored at the
 //               walls).

@@ -124,6 +124,38 @@ TEST_CASE("infill_pattern: lightning's trees hold up the top and shrink away bel
   for (int i = 0; i < 30; ++i) CHECK(at(i) == 0);
 }
 
+TEST_CASE("infill_pattern: lightning under a small top far above the base is a thin tree") {
+  // A 40 mm square base 4 mm thick with an 8 mm square column on it up to 20 mm, centred on the
+  // bed: the column's top (layers 97-99) is the small top 16 mm above the base's.
+  test::TempDir dir("infill-patterns-lightning-column");
+  geo::Mesh part = geo::box({40, 40, 4}, {0, 0, 0});
+  geo::append(part, geo::box({8, 8, 17}, {16, 16, 3}));
+  Run light = run(dir, "lightning", part, {{"infill_pattern", "lightning"}});
+  Run grid = run(dir, "grid", part, {{"infill_pattern", "grid"}});
+  REQUIRE(light.result.ok());
+  REQUIRE(grid.result.ok());
+  auto column = [](const test::Gcode& g, int from, int to) {  // infill (mm) in layers [from, to]
+    double l = 0;
+    for (const auto& m : g.moves)
+      if (extrudes(m) && m.type == "Internal infill" && m.layer >= from && m.layer <= to)
+        l += std::hypot(m.x - m.x0, m.y - m.y0);
+    return l;
+  };
+  // Under the column's top: branches over its 7 mm of sparse area, every point within 2.1 mm
+  // of one (at least 7² / 4.2 = 12 mm of them; 20 mm here).
+  CHECK(column(light.g, 96, 96) > 12);
+  // The column's layers (z 5-19 mm) all together: far less than the grid's (6 % here).
+  CHECK(column(light.g, 25, 95) < 0.15 * column(grid.g, 25, 95));
+  // The base's top needs the whole base held up just under it (layers 17-19 are its top's).
+  CHECK(column(light.g, 16, 16) > 0.5 * column(grid.g, 16, 16));
+  // Every lightning bead inside the column's walls above the base.
+  for (const auto& m : light.g.moves)
+    if (extrudes(m) && m.type == "Internal infill" && m.layer >= 25) {
+      CHECK(std::abs(m.x - 100) < 4);
+      CHECK(std::abs(m.y - 100) < 4);
+    }
+}
+
 TEST_CASE("infill_pattern: cubic and gyroid change from layer to layer, grid stands on itself") {
   test::TempDir dir("infill-patterns-z");
   const geo::Mesh cube = geo::box({20, 20, 10}, {0, 0, 0});
