@@ -5,7 +5,7 @@
       a vertical section through the plane y = Y (mm, bed coordinates): every bead that crosses
       it drawn as a box one bead wide and one layer high, so the layers' heights show.
   example-pictures.py top GCODE OUT.png --layers L1,L2,... [--box X0,Y0,X1,Y1]
-      the layers (0-based, as ;LAYER:) from above, paths coloured by ;TYPE:, the seam of every
+      the layers (0-based, counted by ;LAYER_CHANGE, as our ;LAYER:) from above, paths coloured by ;TYPE:, the seam of every
       outer wall (where its loop starts) as a black dot.
   example-pictures.py panels OUT.png GCODE:LAYER:TITLE ... [--box X0,Y0,X1,Y1]
       one layer of each G-code side by side, with its title (the infill patterns).
@@ -46,16 +46,18 @@ BEAD = 0.45
 def read(path):
     """Layers of extrusions: [(z_bottom, z_top, [(type, x0, y0, x1, y1, starts_run)])]."""
     layers, cur = [], None
-    rel_e, x, y, e, kind, z = False, 0.0, 0.0, 0.0, "", 0.0
+    rel_e, x, y, e, kind = False, 0.0, 0.0, 0.0, ""
     was_extruding = False
     with open(path, errors="replace") as f:
         for raw in f:
-            if raw.startswith(";LAYER:"):
+            if raw.startswith(";LAYER_CHANGE"):  # then ;Z: (the layer's top); ours and PrusaSlicer's
                 cur = []
-                layers.append((z, cur))  # ;Z: (the layer's top) comes before ;LAYER:
+                layers.append([None, cur])
                 continue
             if raw.startswith(";Z:"):
                 z = float(raw[3:])
+                if layers and layers[-1][0] is None:
+                    layers[-1][0] = z
                 continue
             if raw.startswith(";TYPE:"):
                 kind, was_extruding = raw[6:].strip(), False
@@ -88,6 +90,7 @@ def read(path):
     # A layer's bottom: the previous layer's top (the first one's: the bed).
     out, below = [], 0.0
     for top, moves in layers:
+        top = below if top is None else top
         out.append((below, top, moves))
         below = top
     return out

@@ -507,7 +507,7 @@ LightningAreas lightning_areas(std::span<const geo::Layer> layers, const Lightni
     for (int j = i + 1; j <= i + T && !o.empty(); ++j) o = intersection(o, mat[static_cast<size_t>(j)]);
     a.outline[k] = std::move(o);
   }
-  const double t = tan_of(spec.angle_deg);
+  const double t = std::isfinite(spec.angle_deg) ? tan_of(spec.angle_deg) : 0.0;
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<size_t>(i);
     if (a.outline[k].empty()) continue;
@@ -520,7 +520,7 @@ LightningAreas lightning_areas(std::span<const geo::Layer> layers, const Lightni
 
 std::vector<geo::Rings> lightning_trees(std::span<const geo::Layer> layers, const LightningSpec& spec) {
   std::vector<geo::Rings> out(layers.size());
-  if (!(spec.radius_mm > 0) || !std::isfinite(spec.radius_mm)) return out;
+  if (!(spec.radius_mm > 0) || !std::isfinite(spec.radius_mm) || !std::isfinite(spec.angle_deg)) return out;
   const LightningAreas areas = lightning_areas(layers, spec);
   const double radius = spec.radius_mm * geo::kUnitsPerMm, t = tan_of(spec.angle_deg);
   Forest f;

@@ -39,7 +39,7 @@ struct LightningSpec {
 };
 
 // Every layer's branches, bottom to top: open polylines in bed units. Bad specs (radius not
-// above zero, not a number) give no branches.
+// above zero or not a number, angle not a number) give no branches.
 std::vector<geo::Rings> lightning_trees(std::span<const geo::Layer> layers, const LightningSpec& spec);
 
 // The areas lightning_trees() reads, for tests: every layer's outline and need (see above).

@@ -181,6 +181,16 @@ TEST_CASE("lightning: bad specs give no branches; the cache gives the layer task
   for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
   bad.radius_mm = std::numeric_limits<double>::quiet_NaN();
   for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
+  bad = spec_at(0.2);
+  bad.angle_deg = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
+  bad = spec_at(0.2);
+  bad.inset_mm = std::numeric_limits<double>::infinity();  // taken as no walls
+  CHECK(!lightning_trees(layers, bad)[56].empty());
+  // A density near zero: one branch reaches everything, still no NaN.
+  bad = spec_at(1e-6);
+  for (const auto& t : lightning_trees(layers, bad))
+    for (const auto& line : t) CHECK(line.size() >= 2);
   const LightningCache cache;
   const auto direct = lightning_trees(layers, spec_at(0.2));
   for (int i = 0; i < 60; ++i) CHECK(cache.lines(layers, i, spec_at(0.2)) == direct[static_cast<size_t>(i)]);
