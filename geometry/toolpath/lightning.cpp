@@ -191,7 +191,8 @@ bool under(const Forest& f, int a, int root) {
   return false;
 }
 
-struct Layer {
+// What a layer grows on: its sparse region (edges for crossings, border for nearest points).
+struct LayerGround {
   const EdgeGrid& grid;
   const BorderIndex& border;
   double radius, wall;  // units: the supporting radius, the walls' (h·tan(angle))
@@ -204,7 +205,7 @@ double join_cost(const std::vector<int>& nkids, int id, double d, double radius)
 }
 
 // Roots that no longer stand on the border: joined to another tree or to the border.
-void reground(Forest& f, const Layer& L) {
+void reground(Forest& f, const LayerGround& L) {
   NodeGrid nodes(L.radius);
   std::vector<int> nkids(f.size(), 0);
   for (size_t i = 0; i < f.size(); ++i) {
@@ -295,7 +296,7 @@ uint32_t mix(uint64_t v) {
 // New branches for the points of `need` no branch holds yet: nearest the border first (in bands
 // one radius wide, in a scattered order within a band), each joined to the nearest node nearer
 // than the border, else to the border.
-void grow(Forest& f, const geo::Rings& need, const Layer& L) {
+void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
   if (need.empty()) return;
   // A quarter radius, at least 0.2 mm: at high densities a finer grid only costs time.
   Lattice lat(need, std::max(0.25 * L.radius, 0.2 * geo::kUnitsPerMm));
@@ -531,7 +532,7 @@ std::vector<geo::Rings> lightning_trees(std::span<const geo::Layer> layers, cons
     }
     const EdgeGrid grid(areas.outline[i]);
     const BorderIndex border(areas.outline[i], radius);
-    const Layer L{grid, border, radius, layers[i].height() * t * geo::kUnitsPerMm};
+    const LayerGround L{grid, border, radius, layers[i].height() * t * geo::kUnitsPerMm};
     realign(f, grid);
     reground(f, L);
     grow(f, areas.need[i], L);
