@@ -218,27 +218,34 @@ Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<
 
 // A sparse region filled with a pattern other than the zig-zag (geometry/toolpath/infill_patterns):
 // each path is a cell of its own, at the island's angle (the cell stage does not turn them).
-// Lightning zig-zags only the part of the region that holds up the tops above, on the bed's
-// grid (geometry/toolpath/lightning.h: computed once for all layers, shared through the setup).
+// Lightning's branches (geometry/toolpath/lightning.h) are grown for all layers at once, at the
+// first request, and shared through the setup: every point of a top held within spacing /
+// density of a branch (PrusaSlicer's radius; Cura's is half that, but its trees, grown from the
+// edge of the held area, come out about that much closer than lines), in the material less the island's walls (perimeters × the
+// fill's spacing: a little less than the walls, so that the roots, clipped to the region, end on
+// them).
 void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::InfillPattern pattern,
                    toolpath::Neighbours& nb, double angle, double density) {
   std::vector<toolpath::FillPath> fps;
+  toolpath::PatternSpec ps;
+  ps.pattern = pattern;
+  ps.angle_deg = angle;
+  ps.spacing_mm = f.s;
+  ps.density = density;
+  const geo::Layer* layer = nb.at(0);
+  ps.z_mm = layer ? layer->z_slice() : 0.0;
+  ps.artificial_inset_mm = f.fs.artificial_inset_mm;
+  ps.link_max_mm = f.fs.link_max_mm;
+  const toolpath::FillShape shape = toolpath::region_shape(f.region.rings, f.borders, 0.25 * f.w);
   if (pattern == schema::InfillPattern::Lightning) {
-    const geo::Rings& need =
-        nest.setup().lightning.region(nest.setup().layers, nb.index(), static_cast<int>(ip.props[PropId::TopLayers]));
-    const geo::Rings rings = toolpath::intersection(f.region.rings, need);
-    if (!rings.empty()) fps = toolpath::zigzag(toolpath::region_shape(rings, f.borders, 0.25 * f.w), f.fs);
+    toolpath::LightningSpec ls;
+    ls.top_layers = static_cast<int>(ip.props[PropId::TopLayers]);
+    ls.radius_mm = f.s / density;
+    ls.inset_mm = std::max(ip.props[PropId::Perimeters], 0.0) * f.s;
+    ls.angle_deg = toolpath::LightningCache::kAngleDeg;
+    fps = toolpath::clip_fill_lines(nest.setup().lightning.lines(nest.setup().layers, nb.index(), ls), shape, ps);
   } else {
-    toolpath::PatternSpec ps;
-    ps.pattern = pattern;
-    ps.angle_deg = angle;
-    ps.spacing_mm = f.s;
-    ps.density = density;
-    const geo::Layer* layer = nb.at(0);
-    ps.z_mm = layer ? layer->z_slice() : 0.0;
-    ps.artificial_inset_mm = f.fs.artificial_inset_mm;
-    ps.link_max_mm = f.fs.link_max_mm;
-    fps = toolpath::pattern_fill(toolpath::region_shape(f.region.rings, f.borders, 0.25 * f.w), ps);
+    fps = toolpath::pattern_fill(shape, ps);
   }
   for (toolpath::FillPath& fp : fps) add_cell_path(ip, nest, f, add_cell(ip, fp, angle, false), fp, 1.0);
 }

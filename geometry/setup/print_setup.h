@@ -85,8 +85,9 @@ struct PrintSetup {
   std::vector<support::SupportLayer> support;
   std::vector<std::vector<float>> overhang_area;
   std::vector<support::BrimPath> brim;
-  // Lightning infill's regions for every layer, computed by the first layer task that needs
-  // them (per top_layers value) and shared: the one thing a layer task may add to the setup.
+  // Lightning infill's branches for every layer, grown top down by the first layer task that
+  // needs them (per spec: top layers, radius, inset) and shared: the one thing a layer task may
+  // add to the setup.
   mutable toolpath::LightningCache lightning;
 };
 

@@ -463,6 +463,11 @@ geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x
   return out;
 }
 
+std::vector<FillPath> clip_fill_lines(const geo::Rings& lines, const FillShape& shape, const PatternSpec& spec) {
+  if (!(spec.density > 0 && spec.spacing_mm > 0) || shape.rings.empty() || lines.empty()) return {};
+  return clip_and_link(lines, shape, spec, spec.spacing_mm / std::min(spec.density, 1.0));
+}
+
 std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec) {
   if (!(spec.density > 0 && spec.spacing_mm > 0) || shape.rings.empty()) return {};
   const double pitch = spec.spacing_mm / std::min(spec.density, 1.0);  // area per length of line

@@ -50,6 +50,11 @@ struct PatternSpec {
 // Each path's area_mm2 is its length times spacing / density.
 std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec);
 
+// Open polylines (bed units) clipped to `shape` and joined along its border as the patterns'
+// lines are (lightning's branches, geometry/toolpath/lightning.h). Each path's area_mm2 is its
+// length times spec.spacing_mm / spec.density.
+std::vector<FillPath> clip_fill_lines(const geo::Rings& lines, const FillShape& shape, const PatternSpec& spec);
+
 // The lines of a pattern before clipping, over the box [x0, x1] × [y0, y1] (mm): open polylines
 // in bed units. Exposed for tests.
 geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x1, double y1);

@@ -1,39 +1,66 @@
-// Lightning infill: sparse infill only where the tops above need holding up. Where the lowest
-// solid layer over a spot is k layers up (the spot has material on the top_layers + k − 1 layers
-// above it but not on top_layers + k: a top skin starts k layers up), that skin's underside is
-// carried down as a cone whose sides lean `lean_deg` from vertical: each layer further down it
-// shrinks by the layer's height × tan(lean) (PrusaSlicer's and Cura's lightning prune their trees
-// by the same overhang angle, 40° by default). A layer's region is the union of the cones of
-// every skin above it, within its own material; the slicer zig-zags it at the infill density
-// (geometry/plan/island_content.cpp). Computed top down for all layers at once:
-//   R(i) = ((R(i + 1) shrunk by h(i)·tan(lean)) ∪ (A(i, T) − A(i, T + 1))) ∩ material(i),
-// A(i, n) being the material of all of layers i + 1 … i + n (empty when one is past the top).
+// Lightning infill: branching trees that hold up only the tops above (Cura's and PrusaSlicer's
+// lightning, written anew and smaller). Computed top down for all layers at once, before the
+// layer tasks need it:
+//   outline(i)  where layer i has sparse infill: its material shrunk by the walls (`inset_mm`),
+//               under material on each of the top_layers layers above;
+//   need(i)     outline(i) less a band of h·tan(angle) along its border (the walls hold that),
+//               less outline(i + 1): the undersides of the solid layers that start above i.
+// Layer i's forest is the one of layer i + 1 carried down, then grown:
+//   carried     each leaf shortened by h·tan(angle) ("prune": a branch leans at most `angle`
+//               from vertical), chains of single nodes pulled straight by up to h·tan(angle)
+//               ("straighten"), nodes outside outline(i) and edges that leave it removed;
+//   regrounded  a tree whose root is no longer on the border is joined to the nearest node of
+//               another tree (merging them) or to the nearest point of the border;
+//   grown       points of need(i) on a grid of radius/4 (0.2 mm at least), nearest the border first, each not
+//               within `radius_mm` of a branch yet becomes a leaf: joined to the nearest tree
+//               node closer than the border, else to the border (a new tree anchored at the
+//               walls).
+// A layer's branches are its forest's edges as open polylines: each tree walked from its root,
+// a branch continuing its parent's polyline, every further one starting its own. The slicer clips
+// them to the island's sparse region and joins them along its border as the other patterns
+// (geometry/plan/island_content.cpp, toolpath::clip_fill_lines).
 #pragma once
 
 #include <map>
 #include <mutex>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "geometry/core/layer.h"
 
 namespace tranche::toolpath {
 
-// Every layer's lightning region, bottom to top, for islands with `top_layers` solid layers.
-std::vector<geo::Rings> lightning_regions(std::span<const geo::Layer> layers, int top_layers, double lean_deg);
+struct LightningSpec {
+  int top_layers = 3;      // solid layers under each top: the trees hold up the lowest one
+  double radius_mm = 1.0;  // a point of a top is held when a branch passes within this distance
+  double inset_mm = 0.0;   // the sparse region's distance inside the material (the walls)
+  double angle_deg = 40;   // overhang of branches from vertical (Cura's prune/straighten angle)
+};
 
-// lightning_regions() of one print's layers, computed at the first request for a top_layers
-// value and kept: the layer tasks, run in parallel, share it. Thread-safe.
+// Every layer's branches, bottom to top: open polylines in bed units. Bad specs (radius not
+// above zero or not a number, angle not a number) give no branches.
+std::vector<geo::Rings> lightning_trees(std::span<const geo::Layer> layers, const LightningSpec& spec);
+
+// The areas lightning_trees() reads, for tests: every layer's outline and need (see above).
+struct LightningAreas {
+  std::vector<geo::Rings> outline, need;
+};
+LightningAreas lightning_areas(std::span<const geo::Layer> layers, const LightningSpec& spec);
+
+// lightning_trees() of one print's layers, computed at the first request for a spec (top
+// layers, radius and inset, the latter two to the micrometre) and kept: the layer tasks, run in
+// parallel, share it. Thread-safe.
 class LightningCache {
  public:
-  // The region of layer `index` of `layers` (always the same layers for one cache).
-  const geo::Rings& region(std::span<const geo::Layer> layers, int index, int top_layers) const;
+  // The branches of layer `index` of `layers` (always the same layers for one cache).
+  const geo::Rings& lines(std::span<const geo::Layer> layers, int index, const LightningSpec& spec) const;
 
-  static constexpr double kLeanDeg = 40;  // Cura's lightning_infill_support_angle
+  static constexpr double kAngleDeg = 40;  // Cura's lightning_infill_prune_angle
 
  private:
   mutable std::mutex mu_;
-  mutable std::map<int, std::vector<geo::Rings>> by_top_;
+  mutable std::map<std::tuple<int, long long, long long, long long>, std::vector<geo::Rings>> by_spec_;
 };
 
 }  // namespace tranche::toolpath

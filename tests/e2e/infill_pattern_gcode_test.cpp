@@ -76,7 +76,7 @@ TEST_CASE("infill_pattern: every pattern slices a cube, its infill inside the wa
     CHECK(by_type["Top solid infill"] == doctest::Approx(filament_by_type(zig.g)["Top solid infill"]).epsilon(1e-4));
     const double infill = by_type["Internal infill"];
     if (std::string(p) == "lightning") {
-      // Only the cone under the top: at 20 % on a 20 mm cube, less than half the zig-zag's.
+      // Only the trees under the top: at 20 % on a 20 mm cube, less than half the zig-zag's.
       CHECK(infill > 0);
       CHECK(infill < 0.5 * zig_infill);
     } else {
@@ -96,6 +96,64 @@ TEST_CASE("infill_pattern: every pattern slices a cube, its infill inside the wa
     // the pattern's line sets (each layer's pattern is a handful of linked paths).
     CHECK(infill_travels(r.g) < 8 * static_cast<int>(r.g.layer_z.size()));
   }
+}
+
+TEST_CASE("infill_pattern: lightning's trees hold up the top and shrink away below it") {
+  test::TempDir dir("infill-patterns-lightning");
+  const geo::Mesh cube = geo::box({20, 20, 20}, {0, 0, 0});  // 100 layers; 97-99 are the top's
+  Run r = run(dir, "lightning", cube, {{"infill_pattern", "lightning"}});
+  REQUIRE(r.result.ok());
+  std::map<int, double> per_layer;  // sparse infill's length (mm) per layer
+  for (const auto& m : r.g.moves) {
+    if (!extrudes(m) || m.type != "Internal infill") continue;
+    const double l = std::hypot(m.x - m.x0, m.y - m.y0);
+    CHECK(l > 0);  // no zero-length extrusion
+    CHECK(std::isfinite(m.x));
+    CHECK(std::isfinite(m.y));
+    per_layer[m.layer] += l;
+  }
+  auto at = [&](int layer) { return per_layer.count(layer) ? per_layer[layer] : 0.0; };
+  // Under the top (layer 96): branches over all of the 18 mm square, every point of it within
+  // spacing / density (2.1 mm) of one: more than 18² / 4.2 = 77 mm of them, about a grid's
+  // 18² · 0.2 / 0.42 = 154 mm. Then pruned 0.17 mm a layer from their tips: less and less, and
+  // nothing left 14 mm down (no branch is 12 mm long).
+  CHECK(at(96) > 77);
+  CHECK(at(96) < 185);
+  CHECK(at(80) < 0.7 * at(96));
+  CHECK(at(60) < 0.3 * at(96));
+  for (int i = 0; i < 30; ++i) CHECK(at(i) == 0);
+}
+
+TEST_CASE("infill_pattern: lightning under a small top far above the base is a thin tree") {
+  // A 40 mm square base 4 mm thick with an 8 mm square column on it up to 20 mm, centred on the
+  // bed: the column's top (layers 97-99) is the small top 16 mm above the base's.
+  test::TempDir dir("infill-patterns-lightning-column");
+  geo::Mesh part = geo::box({40, 40, 4}, {0, 0, 0});
+  geo::append(part, geo::box({8, 8, 17}, {16, 16, 3}));
+  Run light = run(dir, "lightning", part, {{"infill_pattern", "lightning"}});
+  Run grid = run(dir, "grid", part, {{"infill_pattern", "grid"}});
+  REQUIRE(light.result.ok());
+  REQUIRE(grid.result.ok());
+  auto column = [](const test::Gcode& g, int from, int to) {  // infill (mm) in layers [from, to]
+    double l = 0;
+    for (const auto& m : g.moves)
+      if (extrudes(m) && m.type == "Internal infill" && m.layer >= from && m.layer <= to)
+        l += std::hypot(m.x - m.x0, m.y - m.y0);
+    return l;
+  };
+  // Under the column's top: branches over its 7 mm of sparse area, every point within 2.1 mm
+  // of one (at least 7² / 4.2 = 12 mm of them; 20 mm here).
+  CHECK(column(light.g, 96, 96) > 12);
+  // The column's layers (z 5-19 mm) all together: far less than the grid's (6 % here).
+  CHECK(column(light.g, 25, 95) < 0.15 * column(grid.g, 25, 95));
+  // The base's top needs the whole base held up just under it (layers 17-19 are its top's).
+  CHECK(column(light.g, 16, 16) > 0.5 * column(grid.g, 16, 16));
+  // Every lightning bead inside the column's walls above the base.
+  for (const auto& m : light.g.moves)
+    if (extrudes(m) && m.type == "Internal infill" && m.layer >= 25) {
+      CHECK(std::abs(m.x - 100) < 4);
+      CHECK(std::abs(m.y - 100) < 4);
+    }
 }
 
 TEST_CASE("infill_pattern: cubic and gyroid change from layer to layer, grid stands on itself") {

@@ -119,6 +119,25 @@ TEST_CASE("examples: at least eight, each with a README, one .rules file, a mode
   }
 }
 
+TEST_CASE("examples: the pictures a README shows are in its folder, PNG, under 150 KB") {
+  int shown = 0;
+  for (const auto& n : example_names()) {
+    const fs::path d = source_dir() / "examples" / n;
+    const std::string md = read(d / "README.md");
+    const std::regex image(R"(!\[[^\]]*\]\(([^)]+)\))");
+    for (auto it = std::sregex_iterator(md.begin(), md.end(), image); it != std::sregex_iterator(); ++it) {
+      const fs::path pic = d / (*it)[1].str();
+      INFO(pic.string());
+      REQUIRE(fs::exists(pic));
+      CHECK(pic.extension() == ".png");
+      CHECK(fs::file_size(pic) < 150 * 1024);
+      CHECK(read(pic).substr(0, 8) == "\x89PNG\r\n\x1a\n");
+      ++shown;
+    }
+  }
+  CHECK(shown >= 3);  // dome-lid's section and layers, infill-patterns' patterns
+}
+
 TEST_CASE("examples: together they cover every action kind, context level, other layers, hooks and tools") {
   std::string rules, envs;
   for (const auto& n : example_names()) {

@@ -6,7 +6,6 @@
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/infill_patterns.h"
-#include "geometry/toolpath/lightning.h"
 
 using namespace tranche;
 using namespace tranche::toolpath;
@@ -213,85 +212,3 @@ TEST_CASE("infill patterns: concentric loops follow the border inward") {
   CHECK(length_mm(fps) == doctest::Approx(4 * (19.55 + 15.05 + 10.55 + 6.05 + 1.55) + 4 * 2.25).epsilon(0.02));
 }
 
-TEST_CASE("lightning: the region under a top, carried down as a shrinking cone") {
-  // 30 layers of a 20 mm square (0.2 mm), 3 top layers: layers 27-29 are solid; 26 holds them up.
-  const double h = 0.2, step = h * std::tan(40 * M_PI / 180);
-  const auto layers = test::stack(30, h, geo::Polygon{test::rect(0, 0, 20, 20), {}});
-  const auto regions = lightning_regions(layers, 3, 40);
-  REQUIRE(regions.size() == 30);
-  auto region_at = [&](int i) { return area_mm2(regions[static_cast<size_t>(i)]); };
-  CHECK(region_at(26) == doctest::Approx(400).epsilon(1e-3));
-  const double side = 20 - 2 * 3 * step;  // three layers further down
-  CHECK(region_at(23) == doctest::Approx(side * side).epsilon(0.01));
-  double last = 1e9;
-  for (int i = 26; i >= 0; --i) {
-    const double a = region_at(i);
-    CHECK(a <= last + 1e-6);
-    last = a;
-  }
-  // Layer 0 is 26 layers under the lowest solid one: the cone has shrunk by 26 steps a side.
-  const double side0 = 20 - 2 * 26 * step;
-  CHECK(region_at(0) == doctest::Approx(side0 * side0).epsilon(0.01));
-  // The top layers themselves hold up nothing more.
-  for (int i = 27; i < 30; ++i) CHECK(regions[static_cast<size_t>(i)].empty());
-}
-
-TEST_CASE("lightning: a small top over a wide part needs only a small cone") {
-  // A 40 mm square, 10 layers, then a 6 mm square tower: its layers' top is at layer 19.
-  std::vector<geo::Layer> layers = test::stack(20, 0.2, geo::Polygon{test::rect(0, 0, 40, 40), {}});
-  for (int i = 10; i < 20; ++i) layers[static_cast<size_t>(i)].islands[0].shape = geo::Polygon{test::rect(17, 17, 23, 23), {}};
-  const double step = 0.2 * std::tan(40 * M_PI / 180);
-  const auto regions = lightning_regions(layers, 3, 40);
-  // Layer 6 holds up the slab's top (layers 7-9 solid) less where the tower goes on, and the
-  // tower's own top (layers 17-19 solid), 10 layers up from 6, shrunk by 10 steps a side.
-  const double tower = 6 - 2 * 10 * step;
-  CHECK(area_mm2(regions[6]) == doctest::Approx(1600 - 36 + tower * tower).epsilon(0.002));
-  // Inside the tower, only its own cone: at layer 12, 4 steps.
-  const double t12 = 6 - 2 * 4 * step;
-  CHECK(area_mm2(regions[12]) == doctest::Approx(t12 * t12).epsilon(0.01));
-}
-
-TEST_CASE("lightning: a tall stack, the cone from its top down to the bed") {
-  // 120 layers, 3 of them solid under the top: layer 0 is 117 layers under the lowest solid one,
-  // its cone shrunk by 116 steps (here 0.05 mm a layer: a lean of atan(0.05 / 0.2)).
-  const double h = 0.2, step = 0.05;
-  const auto layers = test::stack(120, h, geo::Polygon{test::rect(0, 0, 30, 30), {}});
-  const auto regions = lightning_regions(layers, 3, std::atan(step / h) * 180 / M_PI);
-  const double side = 30 - 2 * 116 * step;
-  CHECK(area_mm2(regions[0]) == doctest::Approx(side * side).epsilon(0.01));
-}
-
-TEST_CASE("lightning: the cache gives every layer task the same regions") {
-  const auto layers = test::stack(30, 0.2, geo::Polygon{test::rect(0, 0, 20, 20), {}});
-  const LightningCache cache;
-  const auto direct = lightning_regions(layers, 3, LightningCache::kLeanDeg);
-  for (int i = 0; i < 30; ++i) CHECK(cache.region(layers, i, 3) == direct[static_cast<size_t>(i)]);
-  CHECK(cache.region(layers, 40, 3).empty());  // past the top
-  CHECK(area_mm2(cache.region(layers, 27, 0)) > 0);  // no top layers: the skin is the top itself
-}
-
-// Regression: each layer's shrink rounded the region's concave corners (round holes) with new
-// arcs, and the vertices piled up layer after layer until one offset took minutes (the bench's
-// plate with holes). The regions are simplified before each shrink: their size stays that of the
-// outline's.
-TEST_CASE("lightning: a plate with round holes keeps its regions' vertex count bounded") {
-  geo::Polygon plate{test::rect(0, 0, 40, 40), {}};
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      geo::Ring hole;
-      for (int k = 63; k >= 0; --k)  // clockwise
-        hole.push_back(geo::to_point(5 + 10 * i + 2 * std::cos(k * M_PI / 32), 5 + 10 * j + 2 * std::sin(k * M_PI / 32)));
-      plate.holes.push_back(hole);
-    }
-  const auto layers = test::stack(60, 0.2, plate);
-  const auto regions = lightning_regions(layers, 3, 40);
-  size_t outline = 4 + 16 * 64, most = 0;
-  for (const auto& r : regions) {
-    size_t v = 0;
-    for (const auto& ring : r) v += ring.size();
-    most = std::max(most, v);
-  }
-  CAPTURE(most);
-  CHECK(most > 0);
-  CHECK(most < 4 * outline);
-}

@@ -1,0 +1,227 @@
+// Lightning infill's trees (geometry/toolpath/lightning.h): where they are needed, how far they
+// reach, that they branch, stay inside the part and shrink away below the tops they hold.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "fixtures.h"
+#include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
+#include "geometry/toolpath/infill_patterns.h"
+#include "geometry/toolpath/lightning.h"
+#include "geometry/toolpath/zigzag.h"
+
+using namespace tranche;
+using namespace tranche::toolpath;
+
+namespace {
+
+constexpr double kH = 0.2, kSpacing = 0.45;
+
+double length_mm(const geo::Rings& lines) {
+  double l = 0;
+  for (const auto& line : lines)
+    for (size_t i = 1; i < line.size(); ++i)
+      l += std::hypot(geo::to_mm(line[i].X - line[i - 1].X), geo::to_mm(line[i].Y - line[i - 1].Y));
+  return l;
+}
+
+double seg_dist_mm(const geo::Point& a, const geo::Point& b, double x, double y) {
+  const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  const double t = l2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+  return std::hypot(x - ax - t * dx, y - ay - t * dy);
+}
+
+double nearest_branch_mm(const geo::Rings& lines, double x, double y) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& line : lines)
+    for (size_t i = 1; i < line.size(); ++i) d = std::min(d, seg_dist_mm(line[i - 1], line[i], x, y));
+  return d;
+}
+
+// A 40 mm square slab (layers 0-9) under a 6 mm square tower (layers 10-59): the tower's top,
+// 50 layers above the slab's, is the small top far above.
+std::vector<geo::Layer> slab_and_tower() {
+  std::vector<geo::Layer> layers = test::stack(60, kH, geo::Polygon{test::rect(0, 0, 40, 40), {}});
+  for (int i = 10; i < 60; ++i) layers[static_cast<size_t>(i)].islands[0].shape = geo::Polygon{test::rect(17, 17, 23, 23), {}};
+  return layers;
+}
+
+LightningSpec spec_at(double density) {
+  LightningSpec s;
+  s.top_layers = 3;
+  s.radius_mm = 0.5 * kSpacing / density;
+  s.inset_mm = 0.9;
+  s.angle_deg = 40;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("lightning: the areas to hold up are the undersides of the tops") {
+  const auto layers = slab_and_tower();
+  const auto a = lightning_areas(layers, spec_at(0.2));
+  // The tower's top layers 57-59 are solid: layer 56 holds them up, its whole sparse area less
+  // the walls' band (0.2·tan 40° wide).
+  const double wall = kH * std::tan(40 * M_PI / 180), side = 6 - 2 * 0.9 - 2 * wall;
+  CHECK(area_mm2(a.need[56]) == doctest::Approx(side * side).epsilon(0.01));
+  for (int i = 10; i < 56; ++i) CHECK(a.need[static_cast<size_t>(i)].empty());
+  // The slab's top (layers 7-9, less the tower) over layer 6.
+  CHECK(area_mm2(a.need[6]) == doctest::Approx((38.2 - 2 * wall) * (38.2 - 2 * wall) - 36).epsilon(0.01));
+  CHECK(a.outline[57].empty());
+  CHECK(area_mm2(a.outline[30]) == doctest::Approx(4.2 * 4.2).epsilon(1e-3));
+}
+
+TEST_CASE("lightning: every point under a top is within the radius of a branch") {
+  // At 30 %: a radius of 0.75 mm, one bead plus one spacing (0.9 mm) with the grid's margin.
+  const auto layers = slab_and_tower();
+  const LightningSpec spec = spec_at(0.3);
+  const auto trees = lightning_trees(layers, spec);
+  const auto a = lightning_areas(layers, spec);
+  REQUIRE(!trees[56].empty());
+  for (int layer : {56, 6}) {
+    CAPTURE(layer);
+    const EdgeGrid need(a.need[static_cast<size_t>(layer)]);
+    const geo::BBox2 b = bbox(a.need[static_cast<size_t>(layer)]);
+    double worst = 0;
+    int samples = 0;
+    for (double x = geo::to_mm(b.min_x); x <= geo::to_mm(b.max_x); x += 0.13)
+      for (double y = geo::to_mm(b.min_y); y <= geo::to_mm(b.max_y); y += 0.13) {
+        if (!need.inside(geo::to_point(x, y))) continue;
+        ++samples;
+        worst = std::max(worst, nearest_branch_mm(trees[static_cast<size_t>(layer)], x, y));
+      }
+    CAPTURE(worst);
+    CHECK(samples > 50);
+    CHECK(worst <= 2 * kSpacing);
+  }
+}
+
+TEST_CASE("lightning: a small top far above gets a thin tree that shrinks away below it") {
+  const auto layers = slab_and_tower();
+  const LightningSpec spec = spec_at(0.2);
+  const auto trees = lightning_trees(layers, spec);
+  const auto a = lightning_areas(layers, spec);
+  // Under the tower's top: a tree of about the grid's length at this density (area × d / s).
+  const double grid_per_layer = area_mm2(a.outline[56]) * 0.2 / kSpacing;
+  const double top = length_mm(trees[56]);
+  CHECK(top > 0.5 * grid_per_layer);
+  CHECK(top < 1.5 * grid_per_layer);
+  // Going down the tower the branches are pruned by 0.17 mm a layer: shorter and shorter, and
+  // gone well before the slab (every branch of a 4.2 mm wide tower is under 3 mm long).
+  double last = top;
+  for (int i = 55; i >= 10; --i) {
+    const double l = length_mm(trees[static_cast<size_t>(i)]);
+    CHECK(l <= last + 1e-6);
+    last = l;
+  }
+  CHECK(length_mm(trees[40]) < 0.5 * top);
+  CHECK(trees[20].empty());
+  // The tower's plastic is far below the grid's over the same layers.
+  double tower = 0;
+  for (int i = 10; i <= 56; ++i) tower += length_mm(trees[static_cast<size_t>(i)]);
+  CHECK(tower < 0.3 * 47 * grid_per_layer);
+}
+
+TEST_CASE("lightning: the trees branch, stay inside the sparse area and have no empty edges") {
+  const auto layers = slab_and_tower();
+  const LightningSpec spec = spec_at(0.2);
+  const auto trees = lightning_trees(layers, spec);
+  const auto a = lightning_areas(layers, spec);
+  size_t branching = 0;
+  for (size_t i = 0; i < trees.size(); ++i) {
+    CAPTURE(i);
+    if (trees[i].empty()) continue;
+    const EdgeGrid outline(a.outline[i]);
+    std::set<std::pair<geo::coord_t, geo::coord_t>> starts;
+    for (const auto& line : trees[i]) {
+      REQUIRE(line.size() >= 2);
+      for (size_t k = 0; k < line.size(); ++k) {
+        CHECK(outline.inside(line[k]));
+        if (k == 0) continue;
+        CHECK(line[k] != line[k - 1]);  // no zero-length move
+        CHECK_FALSE(outline.crosses(line[k - 1], line[k]));
+      }
+      starts.insert({line[0].X, line[0].Y});
+    }
+    // Branches start from other branches: fewer distinct starts than polylines.
+    if (starts.size() < trees[i].size()) ++branching;
+  }
+  CHECK(branching > 0);
+  // The slab's top holds many trees at layer 6; they join the slab's border.
+  CHECK(trees[6].size() > 10);
+}
+
+TEST_CASE("lightning: a plate with round holes keeps its trees out of the holes") {
+  geo::Polygon plate{test::rect(0, 0, 40, 40), {}};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      geo::Ring hole;
+      for (int k = 63; k >= 0; --k)  // clockwise
+        hole.push_back(geo::to_point(5 + 10 * i + 2 * std::cos(k * M_PI / 32), 5 + 10 * j + 2 * std::sin(k * M_PI / 32)));
+      plate.holes.push_back(hole);
+    }
+  const auto layers = test::stack(40, kH, plate);
+  const auto trees = lightning_trees(layers, spec_at(0.2));
+  REQUIRE(!trees[36].empty());
+  for (const auto& line : trees[36])
+    for (const auto& p : line)
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          CHECK(std::hypot(geo::to_mm(p.X) - (5 + 10 * i), geo::to_mm(p.Y) - (5 + 10 * j)) > 2 + 0.9 - 0.01);
+}
+
+TEST_CASE("lightning: bad specs give no branches; the cache gives the layer tasks the same trees") {
+  const auto layers = slab_and_tower();
+  LightningSpec bad = spec_at(0.2);
+  bad.radius_mm = 0;
+  for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
+  bad.radius_mm = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
+  bad = spec_at(0.2);
+  bad.angle_deg = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& t : lightning_trees(layers, bad)) CHECK(t.empty());
+  bad = spec_at(0.2);
+  bad.inset_mm = std::numeric_limits<double>::infinity();  // taken as no walls
+  CHECK(!lightning_trees(layers, bad)[56].empty());
+  // A density near zero: one branch reaches everything, still no NaN.
+  bad = spec_at(1e-6);
+  for (const auto& t : lightning_trees(layers, bad))
+    for (const auto& line : t) CHECK(line.size() >= 2);
+  const LightningCache cache;
+  const auto direct = lightning_trees(layers, spec_at(0.2));
+  for (int i = 0; i < 60; ++i) CHECK(cache.lines(layers, i, spec_at(0.2)) == direct[static_cast<size_t>(i)]);
+  CHECK(cache.lines(layers, 70, spec_at(0.2)).empty());  // past the top
+  CHECK(cache.lines(layers, -1, spec_at(0.2)).empty());
+}
+
+TEST_CASE("lightning: branches clipped to a region become joined fill paths") {
+  const auto layers = slab_and_tower();
+  const auto trees = lightning_trees(layers, spec_at(0.2));
+  PatternSpec ps;
+  ps.pattern = schema::InfillPattern::Lightning;
+  ps.spacing_mm = kSpacing;
+  ps.density = 0.2;
+  ps.link_max_mm = 5 * kSpacing / 0.2;
+  // The sparse region a little inside the trees' outline: the roots are cut at its border.
+  const geo::Rings region{test::rect(18, 18, 22, 22)};
+  const auto fps = clip_fill_lines(trees[56], fill_shape(region, geo::EdgeKind::Real), ps);
+  REQUIRE(!fps.empty());
+  double l = 0;
+  for (const auto& fp : fps) {
+    CHECK(fp.area_mm2 > 0);
+    for (size_t k = 0; k < fp.pts.size(); ++k) {
+      CHECK(geo::to_mm(fp.pts[k].X) >= 18 - 1e-3);
+      CHECK(geo::to_mm(fp.pts[k].X) <= 22 + 1e-3);
+      if (k > 0) {
+        CHECK(fp.pts[k] != fp.pts[k - 1]);
+        l += std::hypot(geo::to_mm(fp.pts[k].X - fp.pts[k - 1].X), geo::to_mm(fp.pts[k].Y - fp.pts[k - 1].Y));
+      }
+    }
+  }
+  CHECK(l > 0.5 * length_mm(trees[56]));
+  CHECK(clip_fill_lines({}, fill_shape(region, geo::EdgeKind::Real), ps).empty());
+}
