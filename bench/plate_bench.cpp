@@ -1,12 +1,13 @@
 // plate_bench: the plate's loaders and arrangement (bench_plate.sh prints the table).
 //   plate_bench load DIR [RUNS]        10 objects, 2 000 000 triangles: the same meshes as 10
-//                                      STL files and as one 3MF; load time of each (best of
-//                                      RUNS, default 3), their ratio against the goal (1.5), the
+//                                      STL files and as one 3MF; load time of each repeated in
+//                                      this process (best of RUNS, default 3), their ratio, the
 //                                      CPU time of each (all threads: what a load costs when
 //                                      others share the machine), the time only inflating the
 //                                      3MF's model part takes (the floor: deflate is inflated by
 //                                      one thread), and lib3mf reading the whole package alone
-//                                      (what the loader used to do)
+//                                      (what the loader used to do). The goal is judged on loads
+//                                      in fresh processes (bench_plate.sh, with `read`)
 //   plate_bench read RUNS FILE...      loads the FILEs (3MF, STL, OBJ) RUNS times; prints the best
 //                                      wall and CPU time, s (RUNS 1: a first load, in a fresh
 //                                      process; more: a loop to profile with perf record)
@@ -24,6 +25,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -128,9 +130,16 @@ int load(const std::string& dir, int runs) {
       [&] {
         auto zip = plate::ZipArchive::open(bytes->view(), three);
         if (!zip) return false;
-        auto model = zip->read_bytes(*zip->find("3D/3dmodel.model"));  // as the loader reads it
-        model_bytes = model ? model->size() : 0;
-        return model.ok();
+        auto in = zip->stream(*zip->find("3D/3dmodel.model"));  // as the loader reads it: 1 MiB at a time
+        if (!in) return false;
+        std::vector<char> window(size_t{1} << 20);
+        model_bytes = 0;
+        for (;;) {
+          auto got = in->read(window.data(), window.size());
+          if (!got) return false;
+          if (*got == 0) return true;
+          model_bytes += *got;
+        }
       },
       &inflate_cpu);
   // lib3mf alone reading the package into its model (inflating included), before we read a vertex.
@@ -145,15 +154,17 @@ int load(const std::string& dir, int runs) {
     if (model) NMR::lib3mf_release(model);
     return ok;
   });
+  fmt::print("loads repeated in one process (best of {}; memory the previous load freed is reused, which spares the STL\n"
+             "files' 100 MB most of their page faults: not what `tranche slice` sees, see the fresh-process table)\n",
+             runs);
   fmt::print("{:<34} {:>10} {:>9} {:>9} {:>8} {:>7} {:>8}\n", "input (10 objects)", "triangles", "file MB", "load s",
              "vs STL", "CPU s", "vs STL");
   fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8} {:>7.3f} {:>8}\n", "10 binary STL files", triangles, stl_bytes / 1e6,
              stl_s, "1.00", stl_cpu, "1.00");
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   goal 1.5 (load s): {}\n",
-             "one 3MF (mesh scanner + lib3mf)", triangles, fs::file_size(three) / 1e6, three_s, three_s / stl_s,
-             three_cpu, three_cpu / stl_cpu, three_s / stl_s <= 1.5 ? "met" : "MISSED");
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (libdeflate, one thread: no 3MF reader is "
-             "faster than its model part inflates)\n",
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}\n", "one 3MF (mesh scanner + lib3mf)",
+             triangles, fs::file_size(three) / 1e6, three_s, three_s / stl_s, three_cpu, three_cpu / stl_cpu);
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (ISA-L, one thread, 1 MiB at a time: the "
+             "floor of the CPU time)\n",
              "  inflating its model part only", "", model_bytes / 1e6, inflate_s, inflate_s / stl_s, inflate_cpu,
              inflate_cpu / stl_cpu);
   fmt::print("{:<34} {:>10} {:>9} {:>9.3f} {:>8.2f}   (lib3mf's XML reader, inflating included)\n",

@@ -376,17 +376,21 @@ class ReadAhead {
         free_.pop_back();
       }
       bool end = false, bad = false;
-      while (c.size < kChunk) {
-        auto got = in_.read(c.data.get() + c.size, kChunk - c.size);
-        if (!got) {
-          bad = true;
-          break;
+      try {  // an exception must not leave this thread: it only fails the stream (read whole then)
+        while (c.size < kChunk) {
+          auto got = in_.read(c.data.get() + c.size, kChunk - c.size);
+          if (!got) {
+            bad = true;
+            break;
+          }
+          if (*got == 0) {
+            end = true;
+            break;
+          }
+          c.size += *got;
         }
-        if (*got == 0) {
-          end = true;
-          break;
-        }
-        c.size += *got;
+      } catch (...) {
+        bad = true;
       }
       {
         std::lock_guard lock(m_);
