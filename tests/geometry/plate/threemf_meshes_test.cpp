@@ -405,3 +405,51 @@ TEST_CASE("3mf meshes: a large model part loads the same streamed, read whole, a
   CHECK((*a)[0].mesh.triangles.size() == geo::torus(20, 5, 300, 150).triangles.size());
   CHECK(report.empty());
 }
+
+TEST_CASE("3mf meshes: changed large texts: the stream gives the whole text's split, or gives up") {
+  // A text over several windows, changed at random places (a digit, spaces after a tag, or any of
+  // the characters the scanner looks at): wherever the change falls (near a window's edge or
+  // not), a split the stream returns is the one split_meshes returns.
+  const std::string base = model("<object id=\"1\">" + torus_mesh(200) + "</object><object id=\"2\"><components>"
+                                 "<component objectid=\"1\"/></components></object><object id=\"3\">" +
+                                     torus_mesh(200) + "</object>",
+                                 "<item objectid=\"2\"/><item objectid=\"3\"/>");
+  REQUIRE(base.size() > (size_t{3} << 20));
+  std::mt19937 rng(2613);
+  const std::string alphabet = "<>/\"'= .-e0123456789jx!?";
+  int gave_up = 0, same = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::string text = base;
+    const int edits = 1 + round % 3;
+    for (int k = 0; k < edits; ++k) {
+      // Near the 1 MiB steps the window moves by, half the time; anywhere, the other half.
+      size_t at = rng() % text.size();
+      if (round % 2) at = std::min(text.size() - 1, ((rng() % 3) + 1) * (size_t{1} << 20) - 64 + rng() % 128);
+      switch (rng() % 3) {
+        case 0:  // a digit changed: still a mesh, other values
+          at = text.find_first_of("0123456789", at);
+          if (at != std::string::npos) text[at] = static_cast<char>('0' + rng() % 10);
+          break;
+        case 1:  // spaces after a tag: still the same mesh
+          at = text.find('>', at);
+          if (at != std::string::npos) text.insert(at + 1, std::string(1 + rng() % 300, rng() % 2 ? ' ' : '\n'));
+          break;
+        default: {  // anything
+          const char c = alphabet[rng() % alphabet.size()];
+          if (rng() % 2) text[at] = c;
+          else text.insert(at, 1, c);
+        }
+      }
+    }
+    CAPTURE(round);
+    const auto s = streamed(text, 65521);
+    if (!s) {
+      ++gave_up;
+      continue;
+    }
+    CHECK(same_split(*s, threemf::split_meshes(text)));
+    ++same;
+  }
+  MESSAGE(same, " changed texts split the same streamed, ", gave_up, " given up");
+  CHECK(same >= 10);
+}
