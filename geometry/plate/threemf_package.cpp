@@ -451,14 +451,14 @@ Result<Package> inspect_package(std::string_view bytes, const std::string& file,
   return pkg;
 }
 
-std::string without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
-                           SplitModel& split) {
+Result<std::string> without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
+                                   SplitModel& split) {
   auto zip = ZipArchive::open(bytes, file);
   const ZipEntry* model = zip ? zip->find(root) : nullptr;
-  if (!model) return {};
+  if (!model) return std::string();
   // The part read in a stream, its meshes as they come; read whole (split_meshes) when the stream
   // cannot say what split_meshes would (threemf_meshes.h), or the part is damaged (the whole read
-  // then gives up too, and lib3mf names the damage).
+  // then says how).
   // A large part is inflated ahead on a second thread.
   std::optional<SplitModel> streamed;
   if (auto in = zip->stream(*model, kPartLimit)) {
@@ -476,10 +476,10 @@ std::string without_meshes(std::string_view bytes, const std::string& root, cons
     split = std::move(*streamed);
   } else {
     auto xml = zip->read_bytes(*model, kPartLimit);
-    if (!xml) return {};
+    if (!xml) return xml.error();
     split = split_meshes(xml->view());
   }
-  if (split.meshes.empty()) return {};
+  if (split.meshes.empty()) return std::string();
   std::vector<std::pair<std::string, std::string>> parts;
   for (const ZipEntry& e : zip->entries()) {
     if (&e == model) {
@@ -489,7 +489,7 @@ std::string without_meshes(std::string_view bytes, const std::string& root, cons
     auto part = zip->read(e, kPartLimit);
     if (!part) {
       split = SplitModel{};
-      return {};
+      return part.error();
     }
     parts.emplace_back(e.name, std::move(*part));
   }

@@ -453,3 +453,25 @@ TEST_CASE("3mf meshes: changed large texts: the stream gives the whole text's sp
   MESSAGE(same, " changed texts split the same streamed, ", gave_up, " given up");
   CHECK(same >= 10);
 }
+
+TEST_CASE("3mf meshes: a large model part damaged half-way is refused, streamed or not") {
+  // The stream (inflated ahead on a second thread) fails after reading part of the meshes; the
+  // part is then read whole, which fails too, and says how. (lib3mf, which checks no CRC, read
+  // such a part as XML and blamed an attribute.)
+  const std::string plain =
+      model("<object id=\"1\" name=\"torus\">" + torus_mesh(300) + "</object>", "<item objectid=\"1\"/>");
+  const std::string good = package(plain);
+  const size_t at = good.find("3D/3dmodel.model");
+  REQUIRE(at != std::string::npos);
+  Report report;
+  REQUIRE(tranche::plate::parse_3mf(good, "big.3mf", report).ok());
+  for (size_t where : {size_t{2}, size_t{3}}) {  // half-way and two thirds into the archive
+    std::string bad = good;
+    for (size_t k = 0; k < 64; ++k) bad[bad.size() * (where - 1) / where + k] ^= 0x5a;
+    CAPTURE(where);
+    auto r = tranche::plate::parse_3mf(bad, "big.3mf", report);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().to_string().find("big.3mf, 3D/3dmodel.model") != std::string::npos);
+    CHECK(r.error().to_string().find("the ZIP entry is damaged or truncated") != std::string::npos);
+  }
+}
