@@ -517,7 +517,7 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
     const std::string_view t = w.text();
     // The next "<object", by its 'j' (as find_objects()).
     size_t found = std::string_view::npos;
-    for (const char* p = t.data() + at + 3; p < t.data() + t.size();) {
+    for (const char* p = t.data() + std::min(at + 3, t.size()); p < t.data() + t.size();) {
       p = static_cast<const char*>(std::memchr(p, 'j', static_cast<size_t>(t.data() + t.size() - p)));
       if (!p) break;
       if (t.data() + t.size() - p >= 4 && std::memcmp(p - 3, "<object", 7) == 0) {
