@@ -9,8 +9,9 @@
 //                                      (what the loader used to do). The goal is judged on loads
 //                                      in fresh processes (bench_plate.sh, with `read`)
 //   plate_bench read RUNS FILE...      loads the FILEs (3MF, STL, OBJ) RUNS times; prints the best
-//                                      wall and CPU time, s (RUNS 1: a first load, in a fresh
-//                                      process; more: a loop to profile with perf record)
+//                                      wall and CPU time, s, and the peak memory, MiB (RUNS 1: a
+//                                      first load, in a fresh process; more: a loop to profile
+//                                      with perf record)
 //   plate_bench write-objects DIR      the arrangement's 50 objects as DIR/obj00.stl ... obj49.stl
 //   plate_bench arrange DIR [PEER.3mf] arranges them on a 250 × 210 mm bed, 6 mm apart: time
 //                                      (best of 3) and packing density (hull areas over the pile's
@@ -107,9 +108,13 @@ int load(const std::string& dir, int runs) {
   const double stl_s = best_of(
       runs,
       [&] {
-        for (const auto& f : stls)
-          if (!plate::load_model_file(f, report)) return false;
-        return true;
+        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
+        for (const auto& f : stls) {
+          auto o = plate::load_model_file(f, report);
+          if (!o) return false;
+          for (auto& x : *o) plate.push_back(std::move(x));
+        }
+        return plate.size() == stls.size();
       },
       &stl_cpu);
   size_t loaded = 0;
@@ -173,25 +178,29 @@ int load(const std::string& dir, int runs) {
 }
 
 // Loads `files` (each a 3MF, STL, OBJ) `runs` times; prints the best wall and CPU time of loading
-// them all, in seconds.
+// them all, in seconds, and the process's peak memory (resident, MiB).
 int read(int runs, const std::vector<std::string>& files) {
   Report report;
   double cpu = 0;
   const double s = best_of(
       runs,
       [&] {
+        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
         for (const auto& file : files) {
           auto o = plate::load_model_file(file, report);
           if (!o) {
             fmt::print(stderr, "plate_bench: {}\n", o.error().to_string());
             return false;
           }
+          for (auto& x : *o) plate.push_back(std::move(x));
         }
         return true;
       },
       &cpu);
   if (s < 0) return 1;
-  fmt::print("{:.4f} {:.4f}\n", s, cpu);
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  fmt::print("{:.4f} {:.4f} {:.1f}\n", s, cpu, static_cast<double>(u.ru_maxrss) / 1024);  // ru_maxrss: KiB
   return 0;
 }
 
