@@ -1,15 +1,17 @@
 // plate_bench: the plate's loaders and arrangement (bench_plate.sh prints the table).
 //   plate_bench load DIR [RUNS]        10 objects, 2 000 000 triangles: the same meshes as 10
-//                                      STL files and as one 3MF; load time of each (best of
-//                                      RUNS, default 3), their ratio against the goal (1.5), the
+//                                      STL files and as one 3MF; load time of each repeated in
+//                                      this process (best of RUNS, default 3), their ratio, the
 //                                      CPU time of each (all threads: what a load costs when
 //                                      others share the machine), the time only inflating the
 //                                      3MF's model part takes (the floor: deflate is inflated by
 //                                      one thread), and lib3mf reading the whole package alone
-//                                      (what the loader used to do)
+//                                      (what the loader used to do). The goal is judged on loads
+//                                      in fresh processes (bench_plate.sh, with `read`)
 //   plate_bench read RUNS FILE...      loads the FILEs (3MF, STL, OBJ) RUNS times; prints the best
-//                                      wall and CPU time, s (RUNS 1: a first load, in a fresh
-//                                      process; more: a loop to profile with perf record)
+//                                      wall and CPU time, s, and the peak memory, MiB (RUNS 1: a
+//                                      first load, in a fresh process; more: a loop to profile
+//                                      with perf record)
 //   plate_bench write-objects DIR      the arrangement's 50 objects as DIR/obj00.stl ... obj49.stl
 //   plate_bench arrange DIR [PEER.3mf] arranges them on a 250 × 210 mm bed, 6 mm apart: time
 //                                      (best of 3) and packing density (hull areas over the pile's
@@ -24,6 +26,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -105,9 +108,13 @@ int load(const std::string& dir, int runs) {
   const double stl_s = best_of(
       runs,
       [&] {
-        for (const auto& f : stls)
-          if (!plate::load_model_file(f, report)) return false;
-        return true;
+        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
+        for (const auto& f : stls) {
+          auto o = plate::load_model_file(f, report);
+          if (!o) return false;
+          for (auto& x : *o) plate.push_back(std::move(x));
+        }
+        return plate.size() == stls.size();
       },
       &stl_cpu);
   size_t loaded = 0;
@@ -128,9 +135,16 @@ int load(const std::string& dir, int runs) {
       [&] {
         auto zip = plate::ZipArchive::open(bytes->view(), three);
         if (!zip) return false;
-        auto model = zip->read_bytes(*zip->find("3D/3dmodel.model"));  // as the loader reads it
-        model_bytes = model ? model->size() : 0;
-        return model.ok();
+        auto in = zip->stream(*zip->find("3D/3dmodel.model"));  // as the loader reads it: 1 MiB at a time
+        if (!in) return false;
+        std::vector<char> window(size_t{1} << 20);
+        model_bytes = 0;
+        for (;;) {
+          auto got = in->read(window.data(), window.size());
+          if (!got) return false;
+          if (*got == 0) return true;
+          model_bytes += *got;
+        }
       },
       &inflate_cpu);
   // lib3mf alone reading the package into its model (inflating included), before we read a vertex.
@@ -145,15 +159,17 @@ int load(const std::string& dir, int runs) {
     if (model) NMR::lib3mf_release(model);
     return ok;
   });
+  fmt::print("loads repeated in one process (best of {}; memory the previous load freed is reused, which spares the STL\n"
+             "files' 100 MB most of their page faults: not what `tranche slice` sees, see the fresh-process table)\n",
+             runs);
   fmt::print("{:<34} {:>10} {:>9} {:>9} {:>8} {:>7} {:>8}\n", "input (10 objects)", "triangles", "file MB", "load s",
              "vs STL", "CPU s", "vs STL");
   fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8} {:>7.3f} {:>8}\n", "10 binary STL files", triangles, stl_bytes / 1e6,
              stl_s, "1.00", stl_cpu, "1.00");
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   goal 1.5 (load s): {}\n",
-             "one 3MF (mesh scanner + lib3mf)", triangles, fs::file_size(three) / 1e6, three_s, three_s / stl_s,
-             three_cpu, three_cpu / stl_cpu, three_s / stl_s <= 1.5 ? "met" : "MISSED");
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (libdeflate, one thread: no 3MF reader is "
-             "faster than its model part inflates)\n",
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}\n", "one 3MF (mesh scanner + lib3mf)",
+             triangles, fs::file_size(three) / 1e6, three_s, three_s / stl_s, three_cpu, three_cpu / stl_cpu);
+  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (ISA-L, one thread, 1 MiB at a time: the "
+             "floor of the CPU time)\n",
              "  inflating its model part only", "", model_bytes / 1e6, inflate_s, inflate_s / stl_s, inflate_cpu,
              inflate_cpu / stl_cpu);
   fmt::print("{:<34} {:>10} {:>9} {:>9.3f} {:>8.2f}   (lib3mf's XML reader, inflating included)\n",
@@ -162,25 +178,29 @@ int load(const std::string& dir, int runs) {
 }
 
 // Loads `files` (each a 3MF, STL, OBJ) `runs` times; prints the best wall and CPU time of loading
-// them all, in seconds.
+// them all, in seconds, and the process's peak memory (resident, MiB).
 int read(int runs, const std::vector<std::string>& files) {
   Report report;
   double cpu = 0;
   const double s = best_of(
       runs,
       [&] {
+        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
         for (const auto& file : files) {
           auto o = plate::load_model_file(file, report);
           if (!o) {
             fmt::print(stderr, "plate_bench: {}\n", o.error().to_string());
             return false;
           }
+          for (auto& x : *o) plate.push_back(std::move(x));
         }
         return true;
       },
       &cpu);
   if (s < 0) return 1;
-  fmt::print("{:.4f} {:.4f}\n", s, cpu);
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  fmt::print("{:.4f} {:.4f} {:.1f}\n", s, cpu, static_cast<double>(u.ru_maxrss) / 1024);  // ru_maxrss: KiB
   return 0;
 }
 

@@ -10,7 +10,7 @@ PKGS=(
   antlr4 libantlr4-runtime-dev default-jre-headless
   pybind11-dev python3-dev
   libpugixml-dev
-  zlib1g-dev libpng-dev libdeflate-dev
+  zlib1g-dev libpng-dev libdeflate-dev libisal-dev
   nlohmann-json3-dev
   lib3mf-dev libtinyobjloader-dev libcli11-dev
   liblua5.4-dev
@@ -24,6 +24,8 @@ PEERS=(prusa-slicer cura-engine slic3r time)
 want=("${PKGS[@]}")
 # zlib: the preview's data and PNG thumbnails; libpng: the tests decode the thumbnails with it.
 # libdeflate: inflating 3MF packages (a whole ZIP entry at once, about twice as fast as zlib).
+# libisal-dev (ISA-L): inflating a 3MF's model part in a stream the mesh scanner reads as it comes
+# (as fast as libdeflate, without the whole part in memory).
 # chromium: the preview's browser test (tests/geometry/preview/browser) runs it headless.
 # npm fetches test models (stl-models); a machine whose Node.js already bundles npm keeps it.
 if ! command -v npm >/dev/null 2>&1; then want+=(npm); fi

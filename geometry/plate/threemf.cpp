@@ -406,8 +406,9 @@ Result<std::vector<Object>> parse_3mf(std::string_view bytes, const std::string&
   const std::string_view whole = pkg->repacked.empty() ? bytes : std::string_view(pkg->repacked);
   // The plain meshes are read here, the rest by lib3mf from the package without them.
   threemf::SplitModel split;
-  std::string light = threemf::without_meshes(whole, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file, split);
-  const std::string_view input = light.empty() ? whole : std::string_view(light);
+  auto light = threemf::without_meshes(whole, pkg->repacked.empty() ? pkg->root : "3D/3dmodel.model", file, split);
+  if (!light) return light.error();
+  const std::string_view input = light->empty() ? whole : std::string_view(*light);
   Handle model, reader;
   if (lib3mf_createmodel(model.out()) != LIB3MF_OK ||
       lib3mf_model_queryreader(model.get(), MODELREADERCLASS_3MF, reader.out()) != LIB3MF_OK)

@@ -214,51 +214,70 @@ class Scanner {
   size_t i_;
 };
 
-// `<vertex x=".." y=".." z=".."/>` elements up to `</vertices>`, or false.
-bool vertices(Scanner& sc, std::vector<float>& out) {
+// How reading a run of elements ended: at its closing tag, at an element it does not read, or
+// with the cursor at or past the limit it was given (a streamed text's window: read on after more
+// text has come).
+enum class Run { kDone, kFailed, kMore };
+
+// `<vertex x=".." y=".." z=".."/>` elements up to `</vertices>`; an element is begun only before
+// `limit`.
+Run vertices(Scanner& sc, std::vector<float>& out, size_t limit) {
   for (;;) {
+    if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
-    if (sc.eat("</vertices>")) return true;
+    if (sc.eat("</vertices>")) return Run::kDone;
     static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
     float xyz[3];
     if (sc.three("<vertex", kXyz, xyz)) {
-      if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return false;
+      if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return Run::kFailed;
       out.insert(out.end(), xyz, xyz + 3);
       continue;
     }
-    if (!sc.open("vertex")) return false;
+    if (!sc.open("vertex")) return Run::kFailed;
     int got = 0;
     const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
       if (name.size() != 1 || name[0] < 'x' || name[0] > 'z') return true;
       got |= 1 << (name[0] - 'x');
       return parse(value, xyz[name[0] - 'x']) && std::isfinite(xyz[name[0] - 'x']);
     });
-    if (!closed || !*closed || got != 7) return false;
+    if (!closed || !*closed || got != 7) return Run::kFailed;
     out.insert(out.end(), xyz, xyz + 3);
   }
 }
 
-// `<triangle v1=".." v2=".." v3=".." .../>` elements up to `</triangles>` (properties ignored), or false.
-bool triangles(Scanner& sc, std::vector<uint32_t>& out) {
+// `<triangle v1=".." v2=".." v3=".." .../>` elements up to `</triangles>` (properties ignored); an
+// element is begun only before `limit`.
+Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
   for (;;) {
+    if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
-    if (sc.eat("</triangles>")) return true;
+    if (sc.eat("</triangles>")) return Run::kDone;
     static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
       out.insert(out.end(), v, v + 3);
       continue;
     }
-    if (!sc.open("triangle")) return false;
+    if (!sc.open("triangle")) return Run::kFailed;
     int got = 0;
     const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
       if (name.size() != 2 || name[0] != 'v' || name[1] < '1' || name[1] > '3') return true;
       got |= 1 << (name[1] - '1');
       return parse(value, v[name[1] - '1']);
     });
-    if (!closed || !*closed || got != 7) return false;
+    if (!closed || !*closed || got != 7) return Run::kFailed;
     out.insert(out.end(), v, v + 3);
   }
+}
+
+// Whether a mesh read to its end is one to take: it has triangles, and their indices are in range
+// (else lib3mf says what is wrong).
+bool complete(const MeshData& m) {
+  if (m.triangles.empty()) return false;
+  const size_t nv = m.vertices.size() / 3;
+  for (uint32_t v : m.triangles)
+    if (v >= nv) return false;
+  return true;
 }
 
 // A plain `<mesh>` at the cursor, read to its end; nothing for any other form, or a mesh lib3mf
@@ -267,14 +286,12 @@ std::optional<MeshData> mesh(Scanner& sc) {
   MeshData m;
   if (!sc.start("mesh")) return std::nullopt;
   sc.skip_space();
-  if (!sc.start("vertices") || !vertices(sc, m.vertices)) return std::nullopt;
+  constexpr size_t kWhole = std::string_view::npos;  // no limit: the text is all there
+  if (!sc.start("vertices") || vertices(sc, m.vertices, kWhole) != Run::kDone) return std::nullopt;
   sc.skip_space();
-  if (!sc.start("triangles") || !triangles(sc, m.triangles)) return std::nullopt;
+  if (!sc.start("triangles") || triangles(sc, m.triangles, kWhole) != Run::kDone) return std::nullopt;
   sc.skip_space();
-  if (!sc.eat("</mesh>") || m.triangles.empty()) return std::nullopt;
-  const size_t nv = m.vertices.size() / 3;
-  for (uint32_t v : m.triangles)
-    if (v >= nv) return std::nullopt;  // lib3mf says what is wrong
+  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
   return m;
 }
 
@@ -394,6 +411,180 @@ SplitModel split_meshes(std::string_view xml) {
   }
   if (out.meshes.empty()) return SplitModel{};
   out.model.append(xml.substr(copied));
+  return out;
+}
+
+namespace {
+
+// A streamed text in a window: buf_[0, size()) holds the text from some point on; what lies before
+// a position handed to refill() is let go.
+class Window {
+ public:
+  // Before an element is begun, at least this much text past it is in the window (or the text
+  // ends first): an element shorter than this is read whole, a longer one is not read.
+  static constexpr size_t kLook = size_t{64} << 10;
+  static constexpr size_t kFill = size_t{1} << 20;  // read at once: the window is kFill + kLook
+
+  explicit Window(const Pull& pull) : pull_(pull), buf_(new char[kFill + kLook]) {}
+
+  std::string_view text() const { return {buf_.get(), size_}; }
+  size_t size() const { return size_; }
+  bool ended() const { return ended_; }
+  // Where an element may begin: kLook before the window's end, unless the text ends in it.
+  size_t limit() const { return ended_ ? std::string_view::npos : size_ - std::min(size_, kLook); }
+
+  // Lets go of the text before `at` and reads on; `at` is moved with its text. False: the text
+  // cannot be read.
+  bool refill(size_t& at) {
+    if (ended_) return true;
+    ++refills_;
+    std::memmove(buf_.get(), buf_.get() + at, size_ - at);
+    size_ -= at;
+    at = 0;
+    while (size_ < kFill + kLook && !ended_) {
+      const std::optional<size_t> got = pull_(buf_.get() + size_, kFill + kLook - size_);
+      if (!got) return false;
+      ended_ = *got == 0;
+      size_ += *got;
+    }
+    return true;
+  }
+  // Makes sure the window holds kLook bytes past `at` (or the rest of the text).
+  bool look(size_t& at) { return size_ - at > kLook || ended_ || refill(at); }
+  // How often the window has let text go.
+  size_t refills() const { return refills_; }
+
+ private:
+  const Pull& pull_;
+  std::unique_ptr<char[]> buf_;
+  size_t size_ = 0;
+  size_t refills_ = 0;
+  bool ended_ = false;
+};
+
+// Reads a run of elements (vertices() or triangles()) from `at` on, through the window's refills.
+template <class T>
+bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Run (*run)(Scanner&, std::vector<T>&, size_t)) {
+  for (;;) {
+    Scanner sc(w.text(), at);
+    const Run r = run(sc, out, w.limit());
+    at = sc.pos();
+    if (r != Run::kMore) return r == Run::kDone;
+    if (!w.refill(at)) return false;
+  }
+}
+
+// mesh() on a streamed text, `at` moved past it; nothing when it does not read. The vertices are
+// read into `scratch` (kept from mesh to mesh, its memory grown once), then copied to a vector of
+// their size; the triangles into room for as many as a closed mesh has (twice the vertices).
+std::optional<MeshData> streamed_mesh(Window& w, size_t& at, std::vector<float>& scratch) {
+  MeshData m;
+  Scanner sc(w.text(), at);
+  if (!sc.start("mesh")) return std::nullopt;
+  sc.skip_space();
+  if (!sc.start("vertices")) return std::nullopt;
+  at = sc.pos();
+  scratch.clear();
+  if (!streamed_run(w, at, scratch, vertices) || !w.look(at)) return std::nullopt;
+  m.vertices.assign(scratch.begin(), scratch.end());
+  m.triangles.reserve(2 * m.vertices.size() + 3);
+  sc = Scanner(w.text(), at);
+  sc.skip_space();
+  if (!sc.start("triangles")) return std::nullopt;
+  at = sc.pos();
+  if (!streamed_run(w, at, m.triangles, triangles) || !w.look(at)) return std::nullopt;
+  sc = Scanner(w.text(), at);
+  sc.skip_space();
+  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
+  at = sc.pos();
+  return m;
+}
+
+}  // namespace
+
+std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
+  // split_meshes' pass, object after object, but on a window of the text. An element is read only
+  // where it lies whole in the window (kLook past its start), and whatever this pass would leave
+  // in place (a mesh that does not read, an object id taken twice) gives up: split_meshes, on the
+  // whole text, then decides, so that a result from here is always the one it gives.
+  SplitModel out;
+  Window w(pull);
+  std::vector<float> scratch;
+  size_t at = 0;  // the text before `at` is in out.model, or was a mesh replaced
+  if (!w.refill(at)) return std::nullopt;
+  for (;;) {
+    if (!w.look(at)) return std::nullopt;
+    const std::string_view t = w.text();
+    // The next "<object", by its 'j' (as find_objects()).
+    size_t found = std::string_view::npos;
+    for (const char* p = t.data() + std::min(at + 3, t.size()); p < t.data() + t.size();) {
+      p = static_cast<const char*>(std::memchr(p, 'j', static_cast<size_t>(t.data() + t.size() - p)));
+      if (!p) break;
+      if (t.data() + t.size() - p >= 4 && std::memcmp(p - 3, "<object", 7) == 0) {
+        found = static_cast<size_t>(p - 3 - t.data());
+        break;
+      }
+      ++p;
+    }
+    if (found == std::string_view::npos) {
+      if (w.ended()) {
+        out.model.append(t.substr(at));
+        break;
+      }
+      const size_t keep = std::min<size_t>(t.size() - at, 6);  // a "<object" begun at the end
+      out.model.append(t.substr(at, t.size() - at - keep));
+      at = t.size() - keep;
+      if (!w.refill(at)) return std::nullopt;
+      continue;
+    }
+    if (found > at) {  // the text up to it; then the tag, with kLook of text past it in the window
+      out.model.append(t.substr(at, found - at));
+      at = found;
+      continue;
+    }
+    Scanner sc(t, at);
+    if (!sc.open("object")) {
+      out.model.append(t.substr(at, 7));
+      at += 7;
+      continue;
+    }
+    std::optional<uint32_t> id;
+    const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
+      uint32_t v = 0;
+      if (name == "id" && parse(value, v)) id = v;
+      return true;
+    });
+    if (!closed) {  // a tag not read to its end: the rest is lib3mf's, unless the window cut it
+      if (!w.ended()) return std::nullopt;
+      out.model.append(t.substr(at));
+      break;
+    }
+    out.model.append(t.substr(at, sc.pos() - at));
+    at = sc.pos();
+    // As split_meshes: an object with no mesh to take is passed over, the search going on after its tag.
+    if (*closed || !id || *id >= kMaxId || out.meshes.count(*id)) continue;
+    if (!w.look(at)) return std::nullopt;
+    sc = Scanner(w.text(), at);
+    sc.skip_space();
+    const size_t start = sc.pos();
+    if (w.size() - start < 8 && !w.ended()) return std::nullopt;  // spaces as long as the window
+    out.model.append(w.text().substr(at, start - at));
+    at = start;
+    if (!sc.open("mesh")) continue;  // no mesh (components): nothing more to see
+    const size_t refills = w.refills();
+    size_t end = start;
+    std::optional<MeshData> m = streamed_mesh(w, end, scratch);
+    if (!m) {
+      // Passed over as well, but only where this pass saw what split_meshes sees: the whole rest
+      // of the text, none of it let go.
+      if (w.refills() == refills && w.ended()) continue;
+      return std::nullopt;
+    }
+    out.model += placeholder(*id);
+    out.meshes.emplace(*id, std::move(*m));
+    at = end;
+  }
+  if (out.meshes.empty()) return SplitModel{};
   return out;
 }
 

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -37,6 +38,16 @@ struct SplitModel {
 
 // Reads the plain meshes of the model part `xml`; `meshes` is empty when there was none.
 SplitModel split_meshes(std::string_view xml);
+
+// Where a model part read in pieces comes from: its next bytes, at most `n` of them, at `out`; how
+// many (0: the end of the text); nothing when it cannot be read.
+using Pull = std::function<std::optional<size_t>(char* out, size_t n)>;
+
+// split_meshes on a model part read in pieces from `pull`, never whole in memory (a window of about
+// 1 MiB): the result split_meshes gives on the whole text, or nothing where the whole text is
+// needed to say it (an object whose mesh would be left to lib3mf, an id given twice, an element
+// longer than 64 KiB, a text that cannot be read); the caller then reads the part whole.
+std::optional<SplitModel> split_meshes_streamed(const Pull& pull);
 
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
 // (x, y, z each), if it is one.

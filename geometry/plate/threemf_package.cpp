@@ -2,8 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <condition_variable>
+#include <deque>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
+#include <optional>
 #include <pugixml.hpp>
 #include <set>
 
@@ -13,6 +18,7 @@ namespace tranche::plate::threemf {
 namespace {
 
 constexpr uint64_t kPartLimit = uint64_t{1} << 31;  // bytes of one XML part we inflate ourselves
+constexpr uint64_t kReadAhead = uint64_t{4} << 20;   // a model part from this size on is inflated ahead
 constexpr const char* kProductionNs = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06";
 constexpr int kMaxDepth = 16;  // nested components
 constexpr const char* kContentTypes =
@@ -311,6 +317,103 @@ class Repacker {
   std::vector<pugi::xml_node> staged_;
 };
 
+// A ZIP entry inflated ahead on a thread of its own, a few chunks at a time, while the caller
+// scans what came before: inflating (one thread, as deflate is) and reading the meshes overlap.
+class ReadAhead {
+ public:
+  explicit ReadAhead(ZipStream& in) : in_(in) {
+    for (int i = 0; i < kChunks; ++i) free_.push_back(std::make_unique<char[]>(kChunk));
+    thread_ = std::thread([this] { run(); });
+  }
+  ReadAhead(const ReadAhead&) = delete;
+  ReadAhead& operator=(const ReadAhead&) = delete;
+  ~ReadAhead() {
+    {
+      std::lock_guard lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+
+  // As ZipStream::read, but nothing for an error (its words are the whole read's to give).
+  std::optional<size_t> pull(char* out, size_t n) {
+    while (used_ == current_.size) {
+      std::unique_lock lock(m_);
+      if (current_.data) free_.push_back(std::move(current_.data));
+      cv_.notify_all();
+      cv_.wait(lock, [&] { return !ready_.empty() || ended_ || failed_; });
+      if (ready_.empty()) {
+        if (failed_) return std::nullopt;
+        return size_t{0};
+      }
+      current_ = std::move(ready_.front());
+      ready_.pop_front();
+      used_ = 0;
+    }
+    const size_t k = std::min(n, current_.size - used_);
+    std::memcpy(out, current_.data.get() + used_, k);
+    used_ += k;
+    return k;
+  }
+
+ private:
+  static constexpr int kChunks = 4;
+  static constexpr size_t kChunk = size_t{1} << 20;
+  struct Chunk {
+    std::unique_ptr<char[]> data;
+    size_t size = 0;
+  };
+
+  void run() {
+    for (;;) {
+      Chunk c;
+      {
+        std::unique_lock lock(m_);
+        cv_.wait(lock, [&] { return !free_.empty() || stop_; });
+        if (stop_) return;
+        c.data = std::move(free_.back());
+        free_.pop_back();
+      }
+      bool end = false, bad = false;
+      try {  // an exception must not leave this thread: it only fails the stream (read whole then)
+        while (c.size < kChunk) {
+          auto got = in_.read(c.data.get() + c.size, kChunk - c.size);
+          if (!got) {
+            bad = true;
+            break;
+          }
+          if (*got == 0) {
+            end = true;
+            break;
+          }
+          c.size += *got;
+        }
+      } catch (...) {
+        bad = true;
+      }
+      {
+        std::lock_guard lock(m_);
+        if (c.size > 0 && !bad) ready_.push_back(std::move(c));
+        ended_ = end;
+        failed_ = bad;
+      }
+      cv_.notify_all();
+      if (end || bad) return;
+    }
+  }
+
+  ZipStream& in_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<Chunk> ready_;
+  std::vector<std::unique_ptr<char[]>> free_;
+  bool ended_ = false, failed_ = false, stop_ = false;
+  Chunk current_;  // the caller's
+  size_t used_ = 0;
+  std::thread thread_;  // last: started once the rest is made
+};
+
 }  // namespace
 
 Result<Package> inspect_package(std::string_view bytes, const std::string& file, Report& report) {
@@ -348,15 +451,35 @@ Result<Package> inspect_package(std::string_view bytes, const std::string& file,
   return pkg;
 }
 
-std::string without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
-                           SplitModel& split) {
+Result<std::string> without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
+                                   SplitModel& split) {
   auto zip = ZipArchive::open(bytes, file);
   const ZipEntry* model = zip ? zip->find(root) : nullptr;
-  if (!model) return {};
-  auto xml = zip->read_bytes(*model, kPartLimit);
-  if (!xml) return {};
-  split = split_meshes(xml->view());
-  if (split.meshes.empty()) return {};
+  if (!model) return std::string();
+  // The part read in a stream, its meshes as they come; read whole (split_meshes) when the stream
+  // cannot say what split_meshes would (threemf_meshes.h), or the part is damaged (the whole read
+  // then says how).
+  // A large part is inflated ahead on a second thread.
+  std::optional<SplitModel> streamed;
+  if (auto in = zip->stream(*model, kPartLimit)) {
+    if (model->size >= kReadAhead) {
+      ReadAhead ahead(*in);
+      streamed = split_meshes_streamed([&](char* out, size_t n) { return ahead.pull(out, n); });
+    } else {
+      streamed = split_meshes_streamed([&](char* out, size_t n) -> std::optional<size_t> {
+        auto got = in->read(out, n);
+        return got ? std::optional<size_t>(*got) : std::nullopt;
+      });
+    }
+  }
+  if (streamed) {
+    split = std::move(*streamed);
+  } else {
+    auto xml = zip->read_bytes(*model, kPartLimit);
+    if (!xml) return xml.error();
+    split = split_meshes(xml->view());
+  }
+  if (split.meshes.empty()) return std::string();
   std::vector<std::pair<std::string, std::string>> parts;
   for (const ZipEntry& e : zip->entries()) {
     if (&e == model) {
@@ -366,7 +489,7 @@ std::string without_meshes(std::string_view bytes, const std::string& root, cons
     auto part = zip->read(e, kPartLimit);
     if (!part) {
       split = SplitModel{};
-      return {};
+      return part.error();
     }
     parts.emplace_back(e.name, std::move(*part));
   }

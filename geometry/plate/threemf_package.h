@@ -46,9 +46,11 @@ Result<Package> inspect_package(std::string_view bytes, const std::string& file,
 
 // The package `bytes` with the plain meshes of its model part `root` read into `split` and
 // replaced by placeholders (threemf_meshes.h), every part stored uncompressed, for lib3mf; empty
-// (and `split` empty) when there is no plain mesh, or anything stands in the way: then lib3mf
-// reads `bytes` as it is.
-std::string without_meshes(std::string_view bytes, const std::string& root, const std::string& file, SplitModel& split);
+// (and `split` empty) when there is no plain mesh, or the archive cannot be opened here: then
+// lib3mf reads `bytes` as it is. An error when a part is damaged (its inflating fails, or its
+// CRC-32 or size is not the directory's), which lib3mf would not always see.
+Result<std::string> without_meshes(std::string_view bytes, const std::string& root, const std::string& file,
+                                   SplitModel& split);
 
 // Why the model part `root` of the package `bytes` is not well-formed XML, or ok. lib3mf 1.8 reads
 // a model cut short without complaint; when it finds nothing to print, this says why.

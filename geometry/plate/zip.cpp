@@ -1,6 +1,8 @@
 #include "geometry/plate/zip.h"
 
 #include <fmt/format.h>
+#include <isa-l/crc.h>
+#include <isa-l/igzip_lib.h>
 #include <libdeflate.h>
 #include <sys/mman.h>
 #include <zlib.h>
@@ -239,6 +241,84 @@ Result<ZipBytes> ZipArchive::read_bytes(const ZipEntry& e, uint64_t limit) const
 #endif
   if (Status s = unpack(e, *in, out.data()); !s) return s.error();
   return out;
+}
+
+struct ZipStream::State {
+  const ZipArchive* zip = nullptr;
+  const ZipEntry* entry = nullptr;
+  std::string_view in;    // the entry's data in the archive
+  uint64_t in_used = 0;   // of `in`, handed to the inflater (or copied, when stored)
+  uint64_t made = 0;      // bytes given out
+  uint32_t crc = 0;
+  bool done = false;
+  inflate_state inflater;  // deflated entries
+};
+
+ZipStream::ZipStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
+ZipStream::ZipStream(ZipStream&&) noexcept = default;
+ZipStream& ZipStream::operator=(ZipStream&&) noexcept = default;
+ZipStream::~ZipStream() = default;
+
+Result<ZipStream> ZipArchive::stream(const ZipEntry& e, uint64_t limit) const {
+  auto in = data_of(e, limit);
+  if (!in) return in.error();
+  auto s = std::make_unique<ZipStream::State>();
+  s->zip = this;
+  s->entry = &e;
+  s->in = *in;
+  if (e.method == 8) {
+    isal_inflate_init(&s->inflater);
+    s->inflater.crc_flag = ISAL_DEFLATE;  // no wrapper; the CRC is ours
+  }
+  return ZipStream(std::move(s));
+}
+
+Result<size_t> ZipStream::read(char* out, size_t n) {
+  State& s = *s_;
+  const ZipEntry& e = *s.entry;
+  if (s.done || n == 0) return size_t{0};
+  size_t got = 0;
+  if (e.method == 0) {
+    got = static_cast<size_t>(std::min<uint64_t>(n, s.in.size() - s.in_used));
+    if (got) std::memcpy(out, s.in.data() + s.in_used, got);
+    s.in_used += got;
+  } else {
+    // ISA-L counts in 32-bit units: its input is handed over at most 1 GiB at a time.
+    constexpr uint64_t kStep = uint64_t{1} << 30;
+    inflate_state& z = s.inflater;
+    z.next_out = reinterpret_cast<uint8_t*>(out);
+    z.avail_out = static_cast<uint32_t>(std::min<size_t>(n, kStep));
+    while (z.avail_out > 0 && z.block_state != ISAL_BLOCK_FINISH) {
+      if (z.avail_in == 0 && s.in_used < s.in.size()) {
+        z.next_in = reinterpret_cast<uint8_t*>(const_cast<char*>(s.in.data() + s.in_used));
+        z.avail_in = static_cast<uint32_t>(std::min(kStep, s.in.size() - s.in_used));
+        s.in_used += z.avail_in;
+      }
+      const uint32_t before = z.avail_out;
+      const int rc = isal_inflate(&z);
+      if (rc < 0) {
+        s.done = true;
+        return s.zip->damaged(e, inflate_failure(s.in, e.size));
+      }
+      if (z.avail_out == before && z.avail_in == 0 && s.in_used == s.in.size() && z.block_state != ISAL_BLOCK_FINISH)
+        break;  // no input left, and the data has not ended
+    }
+    got = static_cast<size_t>(reinterpret_cast<char*>(z.next_out) - out);
+  }
+  if (got > e.size - s.made) {
+    s.done = true;
+    return s.zip->damaged(e, "the data is longer than the directory says");
+  }
+  s.crc = crc32_gzip_refl(s.crc, reinterpret_cast<const unsigned char*>(out), got);
+  s.made += got;
+  if (got > 0) return got;
+  // Nothing more: the entry must have ended, at its size, with its CRC.
+  s.done = true;
+  if (e.method == 8 && s.inflater.block_state != ISAL_BLOCK_FINISH)
+    return s.zip->damaged(e, inflate_failure(s.in, e.size));
+  if (s.made != e.size) return s.zip->damaged(e, "its size disagrees with the directory");
+  if (s.crc != e.crc) return s.zip->damaged(e, "CRC mismatch");
+  return size_t{0};
 }
 
 ZipBytes::ZipBytes(size_t size) : size_(size) {

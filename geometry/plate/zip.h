@@ -7,10 +7,12 @@
 //
 // Every offset and size is checked against the buffer; entries are stored (method 0) or
 // deflated (method 8, through libdeflate, which inflates a whole entry in one call about twice as
-// fast as zlib; zlib only says why data libdeflate refused is damaged), and their CRC-32 is verified.
+// fast as zlib, or through ISA-L's streaming inflate when an entry is read in pieces; zlib only
+// says why data they refused is damaged), and their CRC-32 is verified.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -54,6 +56,29 @@ class ZipBytes {
   size_t size_ = 0;
 };
 
+class ZipArchive;
+
+// One entry read front to back in pieces (ZipArchive::stream), so that a large part need never
+// be in memory whole: deflate is inflated through ISA-L's streaming inflate, stored data copied.
+// The size and CRC-32 the directory gives are checked when the entry ends.
+class ZipStream {
+ public:
+  ZipStream(ZipStream&&) noexcept;
+  ZipStream& operator=(ZipStream&&) noexcept;
+  ~ZipStream();
+
+  // The next bytes of the entry, at most `n` of them, at `out`: how many (at least 1 while the
+  // entry has more; 0 at its end, once its size and CRC have been found right). An error (the
+  // data is damaged or truncated, in ZipArchive::read's words) ends the stream.
+  Result<size_t> read(char* out, size_t n);
+
+ private:
+  friend class ZipArchive;
+  struct State;
+  explicit ZipStream(std::unique_ptr<State> s);
+  std::unique_ptr<State> s_;
+};
+
 class ZipArchive {
  public:
   // Reads the central directory of `bytes`, which must outlive the archive. Errors (`file`
@@ -67,6 +92,9 @@ class ZipArchive {
   Result<std::string> read(const ZipEntry& entry, uint64_t limit = uint64_t{1} << 31) const;
   // The same, for large entries: memory of their own (ZipBytes).
   Result<ZipBytes> read_bytes(const ZipEntry& entry, uint64_t limit = uint64_t{1} << 31) const;
+  // The same, in pieces (ZipStream); the same checks, the data's only when it is read. The archive
+  // must outlive the stream.
+  Result<ZipStream> stream(const ZipEntry& entry, uint64_t limit = uint64_t{1} << 31) const;
 
  private:
   // The entry's data in the archive, after every check of its header and sizes.
@@ -74,6 +102,7 @@ class ZipArchive {
   // Inflates (or copies) `in`, the data of `entry`, to its `entry.size` bytes at `out`; checks the CRC.
   Status unpack(const ZipEntry& entry, std::string_view in, char* out) const;
   Error damaged(const ZipEntry& entry, const std::string& what) const;
+  friend class ZipStream;
 
   static constexpr uint64_t kPrepared = uint64_t{32} << 20;  // read_bytes: from this size on, pages made ready ahead
 

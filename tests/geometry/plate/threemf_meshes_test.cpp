@@ -253,3 +253,225 @@ TEST_CASE("3mf meshes: many objects are read in order, as one pass would read th
   CHECK(c.meshes.size() == 1);
   CHECK(c.meshes.count(1));
 }
+
+namespace {
+
+// split_meshes_streamed on `xml` handed over in pieces of at most `piece` bytes.
+std::optional<threemf::SplitModel> streamed(const std::string& xml, size_t piece) {
+  size_t at = 0;
+  return threemf::split_meshes_streamed([&](char* out, size_t n) -> std::optional<size_t> {
+    const size_t k = std::min({n, piece, xml.size() - at});
+    std::memcpy(out, xml.data() + at, k);
+    at += k;
+    return k;
+  });
+}
+
+// Whether two splits are the same: the same model text, the same meshes bit for bit.
+bool same_split(const threemf::SplitModel& a, const threemf::SplitModel& b) {
+  if (a.model != b.model || a.meshes.size() != b.meshes.size()) return false;
+  for (const auto& [id, m] : a.meshes) {
+    const auto it = b.meshes.find(id);
+    if (it == b.meshes.end() || m.triangles != it->second.triangles ||
+        m.vertices.size() != it->second.vertices.size() ||
+        std::memcmp(m.vertices.data(), it->second.vertices.data(), m.vertices.size() * sizeof(float)) != 0)
+      return false;
+  }
+  return true;
+}
+
+// The mesh of a torus of n × n/2 vertices as a 3MF writer writes it: several MiB of text for a few hundred n.
+std::string torus_mesh(int n) {
+  const geo::Mesh t = geo::torus(20, 5, n, n / 2);
+  std::string out = "<mesh>\n <vertices>\n";
+  for (const auto& v : t.vertices) out += fmt::format("  <vertex x=\"{}\" y=\"{}\" z=\"{}\" />\n", v.x, v.y, v.z);
+  out += " </vertices>\n <triangles>\n";
+  for (const auto& f : t.triangles) out += fmt::format("  <triangle v1=\"{}\" v2=\"{}\" v3=\"{}\" />\n", f[0], f[1], f[2]);
+  return out + " </triangles>\n</mesh>";
+}
+
+}  // namespace
+
+TEST_CASE("3mf meshes: the part read in a stream splits as the whole text does") {
+  // Small models (the whole text in one window) and large ones (many windows, with objects,
+  // components and build items between meshes), handed over in pieces of every size.
+  std::vector<std::string> texts;
+  texts.push_back(model("<object id=\"7\" type=\"model\">" + box_mesh(1, 2, 3) +
+                            "</object><object id=\"8\"><components><component objectid=\"7\"/></components></object>",
+                        "<item objectid=\"8\"/>"));
+  texts.push_back(model("<object\n id = '3'\t>\r\n <mesh >\n\t<vertices\n>\n\t\t<vertex\n\t\t\tz = \"3\"  y='2'\r\n "
+                        "x=\"1\" />\n<vertex x=\"4\"\ty=\"5\"\nz=\"6\"/><vertex  x=\"7\"  y=\"8\"  z=\"9\"  /></vertices>"
+                        "\n<triangles><triangle v3=\"2\" p1=\"0\" v1=\"0\" v2 = '1' />\n</triangles>\n</mesh></object>",
+                        "<item objectid=\"3\"/>"));
+  std::string resources;
+  for (int id = 1; id <= 40; ++id) {
+    resources += fmt::format("<object id=\"{}\" type=\"model\">{}</object>", id, box_mesh(id, 1, 1));
+    if (id == 20) resources += "<object id=\"9\" type=\"model\">" + box_mesh(99, 1, 1) + "</object>";  // taken
+  }
+  texts.push_back(model(resources, "<item objectid=\"1\"/>"));
+  texts.push_back(model(fmt::format("<object id=\"1\">{}</object><object id=\"2\" name=\"never closed<object id=\"3\">{}",
+                                    box_mesh(1, 1, 1), box_mesh(1, 1, 1)),
+                        ""));
+  // Large: three tori of several MiB each, a components object between them, a small box whose
+  // mesh lib3mf is left (a comment in it) at the end.
+  const std::string big = torus_mesh(300);
+  REQUIRE(big.size() > (size_t{3} << 20));
+  std::string commented = box_mesh(1, 1, 1);
+  commented.replace(commented.find("<vertices>"), 10, "<vertices><!-- lib3mf's -->");
+  texts.push_back(model("<object id=\"1\" type=\"model\">" + big +
+                            "</object>\n<object id=\"2\"><components><component objectid=\"1\"/></components></object>"
+                            "<object id=\"3\" name=\"b\">" + big + "</object><object id=\"4\">" + big +
+                            "</object><object id=\"5\">" + commented + "</object>",
+                        "<item objectid=\"2\"/><item objectid=\"3\"/><item objectid=\"4\"/><item objectid=\"5\"/>"));
+  for (size_t t = 0; t < texts.size(); ++t) {
+    const threemf::SplitModel whole = threemf::split_meshes(texts[t]);
+    REQUIRE(!whole.meshes.empty());
+    for (size_t piece : {size_t{1}, size_t{7}, size_t{4093}, size_t{1} << 20, size_t{3} << 20}) {
+      if (piece == 1 && texts[t].size() > (size_t{1} << 20)) continue;  // a byte at a time: small texts only
+      CAPTURE(t);
+      CAPTURE(piece);
+      const auto s = streamed(texts[t], piece);
+      REQUIRE(s);
+      CHECK(same_split(*s, whole));
+    }
+  }
+  CHECK(threemf::split_meshes(texts.back()).meshes.size() == 3);
+}
+
+TEST_CASE("3mf meshes: where the stream cannot say what the whole text gives, it gives up") {
+  const std::string big = torus_mesh(300);
+  auto one = [](const std::string& mesh) { return model("<object id=\"1\">" + mesh + "</object>", "<item objectid=\"1\"/>"); };
+  // A mesh left to lib3mf found after the window moved on: the text before it is gone.
+  std::string late = big;
+  late.replace(late.rfind("<triangle "), 0, "<!-- lib3mf's -->");
+  CHECK(threemf::split_meshes(one(late)).meshes.empty());
+  CHECK_FALSE(streamed(one(late), 4093));
+  // An element longer than the whole window (a little over 1 MiB).
+  std::string wide = big;
+  wide.replace(wide.find("<vertex ") + 7, 0, std::string(size_t{1200} << 10, ' '));
+  REQUIRE(threemf::split_meshes(one(wide)).meshes.size() == 1);  // read whole: the spaces are allowed
+  CHECK_FALSE(streamed(one(wide), 1 << 20));
+  // Text that cannot be read.
+  size_t calls = 0;
+  CHECK_FALSE(threemf::split_meshes_streamed([&](char*, size_t) -> std::optional<size_t> {
+    ++calls;
+    return std::nullopt;
+  }));
+  CHECK(calls == 1);
+  // No mesh at all: nothing, as split_meshes.
+  const auto none = streamed(model("<object id=\"1\"><components/></object>", ""), 100);
+  REQUIRE(none);
+  CHECK(none->meshes.empty());
+  CHECK(none->model.empty());
+}
+
+TEST_CASE("3mf meshes: a large model part loads the same streamed, read whole, and through lib3mf") {
+  // Past the size from which the part is inflated ahead on a second thread (4 MiB). The same model
+  // with a comment in its last mesh's triangles: the stream gives up there, the part is read
+  // whole, and lib3mf reads that mesh.
+  const std::string big = torus_mesh(300);
+  const std::string box = box_mesh(10, 20, 5, 60);
+  const std::string plain = model("<object id=\"1\" name=\"torus\">" + big + "</object><object id=\"2\" name=\"box\">" + box +
+                                      "</object>",
+                                  "<item objectid=\"1\"/><item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 0 3\"/>");
+  std::string commented = plain;
+  commented.replace(commented.rfind("<triangle "), 0, "<!-- lib3mf's -->");
+  std::string late_torus = plain;  // the torus's own mesh left to lib3mf, found late
+  late_torus.replace(late_torus.find("</triangles>"), 0, "<!-- lib3mf's -->");
+  REQUIRE(plain.size() > (size_t{4} << 20));
+  Report report;
+  auto a = tranche::plate::parse_3mf(package(plain), "big.3mf", report);
+  REQUIRE_MESSAGE(a.ok(), a.error().to_string());
+  REQUIRE(a->size() == 2);
+  for (const std::string& other : {commented, late_torus}) {
+    for (bool stored : {false, true}) {
+      CAPTURE(stored);
+      auto b = tranche::plate::parse_3mf(package(other, {}, stored), "big.3mf", report);
+      REQUIRE_MESSAGE(b.ok(), b.error().to_string());
+      REQUIRE(b->size() == 2);
+      for (size_t i = 0; i < 2; ++i) {
+        CAPTURE(i);
+        CHECK((*a)[i].name == (*b)[i].name);
+        CHECK((*a)[i].transform.matrix() == (*b)[i].transform.matrix());
+        CHECK((*a)[i].mesh.triangles == (*b)[i].mesh.triangles);
+        const auto &av = (*a)[i].mesh.vertices, &bv = (*b)[i].mesh.vertices;
+        REQUIRE(av.size() == bv.size());
+        size_t differ = 0;
+        for (size_t k = 0; k < av.size(); ++k) differ += !(av[k].x == bv[k].x && av[k].y == bv[k].y && av[k].z == bv[k].z);
+        CHECK(differ == 0);
+      }
+    }
+  }
+  CHECK((*a)[0].mesh.triangles.size() == geo::torus(20, 5, 300, 150).triangles.size());
+  CHECK(report.empty());
+}
+
+TEST_CASE("3mf meshes: changed large texts: the stream gives the whole text's split, or gives up") {
+  // A text over several windows, changed at random places (a digit, spaces after a tag, or any of
+  // the characters the scanner looks at): wherever the change falls (near a window's edge or
+  // not), a split the stream returns is the one split_meshes returns.
+  const std::string base = model("<object id=\"1\">" + torus_mesh(200) + "</object><object id=\"2\"><components>"
+                                 "<component objectid=\"1\"/></components></object><object id=\"3\">" +
+                                     torus_mesh(200) + "</object>",
+                                 "<item objectid=\"2\"/><item objectid=\"3\"/>");
+  REQUIRE(base.size() > (size_t{3} << 20));
+  std::mt19937 rng(2613);
+  const std::string alphabet = "<>/\"'= .-e0123456789jx!?";
+  int gave_up = 0, same = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::string text = base;
+    const int edits = 1 + round % 3;
+    for (int k = 0; k < edits; ++k) {
+      // Near the 1 MiB steps the window moves by, half the time; anywhere, the other half.
+      size_t at = rng() % text.size();
+      if (round % 2) at = std::min(text.size() - 1, ((rng() % 3) + 1) * (size_t{1} << 20) - 64 + rng() % 128);
+      switch (rng() % 3) {
+        case 0:  // a digit changed: still a mesh, other values
+          at = text.find_first_of("0123456789", at);
+          if (at != std::string::npos) text[at] = static_cast<char>('0' + rng() % 10);
+          break;
+        case 1:  // spaces after a tag: still the same mesh
+          at = text.find('>', at);
+          if (at != std::string::npos) text.insert(at + 1, std::string(1 + rng() % 300, rng() % 2 ? ' ' : '\n'));
+          break;
+        default: {  // anything
+          const char c = alphabet[rng() % alphabet.size()];
+          if (rng() % 2) text[at] = c;
+          else text.insert(at, 1, c);
+        }
+      }
+    }
+    CAPTURE(round);
+    const auto s = streamed(text, 65521);
+    if (!s) {
+      ++gave_up;
+      continue;
+    }
+    CHECK(same_split(*s, threemf::split_meshes(text)));
+    ++same;
+  }
+  MESSAGE(same, " changed texts split the same streamed, ", gave_up, " given up");
+  CHECK(same >= 10);
+}
+
+TEST_CASE("3mf meshes: a large model part damaged half-way is refused, streamed or not") {
+  // The stream (inflated ahead on a second thread) fails after reading part of the meshes; the
+  // part is then read whole, which fails too, and says how. (lib3mf, which checks no CRC, read
+  // such a part as XML and blamed an attribute.)
+  const std::string plain =
+      model("<object id=\"1\" name=\"torus\">" + torus_mesh(300) + "</object>", "<item objectid=\"1\"/>");
+  const std::string good = package(plain);
+  const size_t at = good.find("3D/3dmodel.model");
+  REQUIRE(at != std::string::npos);
+  Report report;
+  REQUIRE(tranche::plate::parse_3mf(good, "big.3mf", report).ok());
+  for (size_t where : {size_t{2}, size_t{3}}) {  // half-way and two thirds into the archive
+    std::string bad = good;
+    for (size_t k = 0; k < 64; ++k) bad[bad.size() * (where - 1) / where + k] ^= 0x5a;
+    CAPTURE(where);
+    auto r = tranche::plate::parse_3mf(bad, "big.3mf", report);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().to_string().find("big.3mf, 3D/3dmodel.model") != std::string::npos);
+    CHECK(r.error().to_string().find("the ZIP entry is damaged or truncated") != std::string::npos);
+  }
+}

@@ -1,6 +1,8 @@
 // The ZIP reading under the 3MF loader: round trips, and damage that must be refused, not believed.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include "geometry/plate/zip.h"
 #include "tests/geometry/plate/plate_fixtures.h"
 
@@ -9,6 +11,28 @@ using namespace tranche::plate;
 
 namespace {
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// An entry read through ZipArchive::stream in pieces of `piece` bytes.
+Result<std::string> streamed(const ZipArchive& zip, const ZipEntry& e, size_t piece) {
+  auto in = zip.stream(e);
+  if (!in) return in.error();
+  std::string out;
+  std::vector<char> buf(piece);
+  size_t longest = 0;
+  for (;;) {
+    auto got = in->read(buf.data(), buf.size());
+    if (!got) return got.error();
+    if (*got == 0) break;
+    longest = std::max(longest, *got);
+    out.append(buf.data(), *got);
+  }
+  CHECK(longest <= piece);
+  auto after = in->read(buf.data(), buf.size());  // ended: stays ended
+  REQUIRE(after.ok());
+  CHECK(*after == 0);
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("zip: stored and deflated entries read back; names are found case-insensitively") {
@@ -24,6 +48,11 @@ TEST_CASE("zip: stored and deflated entries read back; names are found case-inse
     CHECK(*b == big);
     CHECK(*zip->read(*zip->find("a.txt")) == "alpha");
     CHECK(zip->find("c.txt") == nullptr);
+    for (size_t piece : {size_t{1}, size_t{4096}, size_t{1} << 20}) {  // in pieces, as long as they come
+      CAPTURE(piece);
+      CHECK(*streamed(*zip, *zip->find("dir/b.xml"), piece) == big);
+      CHECK(*streamed(*zip, *zip->find("a.txt"), piece) == "alpha");
+    }
   }
   CHECK(looks_like_zip(write_stored_zip({})));
   CHECK(ZipArchive::open(write_stored_zip({}), "empty.zip")->entries().empty());
@@ -103,7 +132,12 @@ std::string read_error(const std::string& zip_bytes) {
   REQUIRE_FALSE(r.ok());
   auto b = zip->read_bytes(zip->entries()[0]);
   REQUIRE_FALSE(b.ok());
-  CHECK(b.error().to_string() == r.error().to_string());  // both ways, the same message
+  CHECK(b.error().to_string() == r.error().to_string());  // every way, the same message
+  for (size_t piece : {size_t{1} << 20, size_t{777}}) {
+    auto s = streamed(*zip, zip->entries()[0], piece);
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.error().to_string() == r.error().to_string());
+  }
   return r.error().to_string();
 }
 
@@ -153,6 +187,7 @@ TEST_CASE("zip: a large entry read into memory of its own reads back whole") {
     auto b = zip->read_bytes(zip->entries()[0]);
     REQUIRE_MESSAGE(b.ok(), b.error().to_string());
     CHECK(b->size() == big.size());
+    CHECK(*streamed(*zip, zip->entries()[0], size_t{1} << 20) == big);
     CHECK(b->view() == big);
     ZipBytes moved = std::move(*b);  // the memory changes hands, once
     CHECK(moved.view() == big);
