@@ -2,20 +2,25 @@
 
 moves(path) yields (kind, x0, y0, x, y, de) for every G0/G1: kind is the last ;TYPE: comment (as
 written), (x0, y0) -> (x, y) the move in absolute XY, de the filament it feeds (mm; M82/M83 and
-G92 handled, negative for a retraction).
+G92 handled, negative for a retraction). on_comment, if given, is called with every line that
+starts with ';' (;LAYER_CHANGE, ;Z:, ;TYPE:...) as it is read, between the moves around it.
+Also read by scripts/example-pictures.py.
 """
 import re
 
 WORD = re.compile(r'([XYZE])(-?\d*\.?\d+)')
 
 
-def moves(path):
+def moves(path, on_comment=None):
     rel_e, x, y, e = False, 0.0, 0.0, 0.0
     kind = ''
     with open(path, errors='replace') as f:
         for raw in f:
-            if raw.startswith(';TYPE:'):
-                kind = raw[6:].strip()
+            if raw.startswith(';'):
+                if on_comment:
+                    on_comment(raw)
+                if raw.startswith(';TYPE:'):
+                    kind = raw[6:].strip()
                 continue
             line = raw.split(';', 1)[0].strip()
             if not line:

@@ -13,8 +13,11 @@
 Beads are drawn at 0.45 mm wide; travels are not drawn.
 """
 import argparse
-import re
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
+import gcode_moves  # noqa: E402  (the G-code reader the bench scripts share)
 
 try:
     import matplotlib
@@ -39,54 +42,32 @@ COLOURS = {
     "Support material": "#00c000",
     "Support material interface": "#008000",
 }
-WORD = re.compile(r"([XYZE])(-?\d*\.?\d+)")
 BEAD = 0.45
 
 
 def read(path):
     """Layers of extrusions: [(z_bottom, z_top, [(type, x0, y0, x1, y1, starts_run)])]."""
     layers, cur = [], None
-    rel_e, x, y, e, kind = False, 0.0, 0.0, 0.0, ""
     was_extruding = False
-    with open(path, errors="replace") as f:
-        for raw in f:
-            if raw.startswith(";LAYER_CHANGE"):  # then ;Z: (the layer's top); ours and PrusaSlicer's
-                cur = []
-                layers.append([None, cur])
-                continue
-            if raw.startswith(";Z:"):
-                z = float(raw[3:])
-                if layers and layers[-1][0] is None:
-                    layers[-1][0] = z
-                continue
-            if raw.startswith(";TYPE:"):
-                kind, was_extruding = raw[6:].strip(), False
-                continue
-            line = raw.split(";", 1)[0].strip()
-            if not line:
-                continue
-            cmd = line.split(None, 1)[0].upper()
-            if cmd in ("M82", "M83"):
-                rel_e = cmd == "M83"
-            elif cmd == "G92":
-                for k, v in WORD.findall(line.upper()):
-                    if k == "E":
-                        e = float(v)
-            elif cmd in ("G0", "G1"):
-                w = dict(WORD.findall(line.upper()))
-                nx, ny = float(w.get("X", x)), float(w.get("Y", y))
-                de = 0.0
-                if "E" in w:
-                    v = float(w["E"])
-                    de = v if rel_e else v - e
-                    e = e + v if rel_e else v
-                moved = (nx, ny) != (x, y)
-                if de > 0 and moved and cur is not None:
-                    cur.append((kind, x, y, nx, ny, not was_extruding))
-                    was_extruding = True
-                elif moved:
-                    was_extruding = False
-                x, y = nx, ny
+
+    def comment(raw):
+        nonlocal cur, was_extruding
+        if raw.startswith(";LAYER_CHANGE"):  # then ;Z: (the layer's top); ours and PrusaSlicer's
+            cur = []
+            layers.append([None, cur])
+        elif raw.startswith(";Z:"):
+            if layers and layers[-1][0] is None:
+                layers[-1][0] = float(raw[3:])
+        elif raw.startswith(";TYPE:"):
+            was_extruding = False
+
+    for kind, x, y, nx, ny, de in gcode_moves.moves(path, comment):
+        moved = (nx, ny) != (x, y)
+        if de > 0 and moved and cur is not None:
+            cur.append((kind, x, y, nx, ny, not was_extruding))
+            was_extruding = True
+        elif moved:
+            was_extruding = False
     # A layer's bottom: the previous layer's top (the first one's: the bed).
     out, below = [], 0.0
     for top, moves in layers:
