@@ -295,6 +295,25 @@ std::optional<MeshData> mesh(Scanner& sc) {
   return m;
 }
 
+// The attributes of an <object> tag (the scanner just past its name): whether the tag closes
+// itself (attributes()'s answer) and its id, when it has a valid one; nullopt when the tag does
+// not end in the text.
+struct ObjectTag {
+  bool self_closed = false;
+  std::optional<uint32_t> id;
+};
+std::optional<ObjectTag> object_tag(Scanner& sc) {
+  ObjectTag tag;
+  const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
+    uint32_t v = 0;
+    if (name == "id" && parse(value, v)) tag.id = v;
+    return true;
+  });
+  if (!closed) return std::nullopt;
+  tag.self_closed = *closed;
+  return tag;
+}
+
 std::string placeholder(uint32_t id) {
   return fmt::format(
       "<mesh><vertices><vertex x=\"{0}\" y=\"{1}\" z=\"0\"/><vertex x=\"{0}\" y=\"{2}\" z=\"0\"/><vertex x=\"{0}\" "
@@ -368,18 +387,13 @@ SplitModel split_meshes(std::string_view xml) {
         p += 7;
         continue;
       }
-      std::optional<uint32_t> id;
-      const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
-        uint32_t v = 0;
-        if (name == "id" && parse(value, v)) id = v;
-        return true;
-      });
-      if (!closed) {
+      const auto tag = object_tag(sc);
+      if (!tag) {
         a.broken = true;
         break;
       }
       a.after = p = sc.pos();
-      if (!*closed) a.id = id;
+      if (!tag->self_closed) a.id = tag->id;
     }
     tbb::parallel_for(size_t{0}, batch.size(), [&](size_t i) {
       Ahead& a = batch[i];
@@ -548,13 +562,8 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
       at += 7;
       continue;
     }
-    std::optional<uint32_t> id;
-    const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
-      uint32_t v = 0;
-      if (name == "id" && parse(value, v)) id = v;
-      return true;
-    });
-    if (!closed) {  // a tag not read to its end: the rest is lib3mf's, unless the window cut it
+    const auto tag = object_tag(sc);
+    if (!tag) {  // a tag not read to its end: the rest is lib3mf's, unless the window cut it
       if (!w.ended()) return std::nullopt;
       out.model.append(t.substr(at));
       break;
@@ -562,7 +571,8 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
     out.model.append(t.substr(at, sc.pos() - at));
     at = sc.pos();
     // As split_meshes: an object with no mesh to take is passed over, the search going on after its tag.
-    if (*closed || !id || *id >= kMaxId || out.meshes.count(*id)) continue;
+    const std::optional<uint32_t> id = tag->id;
+    if (tag->self_closed || !id || *id >= kMaxId || out.meshes.count(*id)) continue;
     if (!w.look(at)) return std::nullopt;
     sc = Scanner(w.text(), at);
     sc.skip_space();
