@@ -12,6 +12,8 @@ import math
 import os
 import sys
 
+from walls_models import write_stl  # ASCII STL of facets, shared with the walls bench
+
 
 def frustum(r0, r1, h, n=32):
     """Closed frustum, axis z, radius r0 at z = 0 and r1 at z = h (triangles CCW from outside)."""
@@ -37,21 +39,6 @@ def box(x0, y0, z0, x1, y1, z1):
     return tris
 
 
-def write_stl(path, tris, name):
-    with open(path, 'w') as f:
-        f.write(f'solid {name}\n')
-        for a, b, c in tris:
-            ux, uy, uz = (b[k] - a[k] for k in range(3))
-            vx, vy, vz = (c[k] - a[k] for k in range(3))
-            nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-            ln = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
-            f.write(f'facet normal {nx / ln:.6f} {ny / ln:.6f} {nz / ln:.6f}\n outer loop\n')
-            for p in (a, b, c):
-                f.write(f'  vertex {p[0]:.6f} {p[1]:.6f} {p[2]:.6f}\n')
-            f.write(' endloop\nendfacet\n')
-        f.write(f'endsolid {name}\n')
-
-
 MODELS = {
     'flare_45': lambda: frustum(6.0, 16.0, 10.0),
     'flare_70': lambda: frustum(6.0, 6.0 + 4.0 * math.tan(math.radians(70)), 4.0),
@@ -64,5 +51,5 @@ if __name__ == '__main__':
     os.makedirs(out, exist_ok=True)
     for name, make in MODELS.items():
         path = os.path.join(out, name + '.stl')
-        write_stl(path, make(), name)
+        write_stl(path, make())
         print(name, path)
