@@ -319,9 +319,16 @@ Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report,
                                   "set support = normal or tree (--set support=normal) or support it by a rule");
       !s)
     return s;
-  if (Status s = warn_unsupported(S, c.near_bed, report, o, "overhang-near-bed",
-                                  "it is less than support_z_gap above the bed, so no support fits under it: "
-                                  "lay the part on another face (--lay-flat, --rotate-x) or lower support_z_gap");
+  // Support may touch what hangs that low: one rule, up to the highest such layer, says so.
+  double near_top = 0;
+  for (size_t L = 0; L < n; ++L)
+    if (c.near_bed[L] >= 1.0) near_top = S.layers[L].z_top;
+  if (Status s = warn_unsupported(
+          S, c.near_bed, report, o, "overhang-near-bed",
+          fmt::format("it is less than support_z_gap above the bed, so no support fits under it: lay the part on "
+                      "another face (--lay-flat, --rotate-x), or let support touch it there: rule when "
+                      "layer.z_bottom < {:g} mm {{ support_z_gap = 0 mm }}",
+                      near_top));
       !s)
     return s;
   plan_raft(S, static_cast<int>(S.print_props[PropId::RaftLayers]));

@@ -199,6 +199,21 @@ TEST_CASE("support: an overhang less than the z gap above the bed is said as suc
       if (w.code == "overhang-near-bed") CHECK(w.message.find("no support fits under it") != std::string::npos);
     CHECK_FALSE(r.g.contains(";TYPE:Support material"));
   }
+  // The rule the warning gives lets support touch the overhang: it stands on the bed under it,
+  // and nothing is said.
+  Run w = run(dir, "touch", m, {{"support", "normal"}});
+  REQUIRE(w.result.ok());
+  std::string rule;
+  for (const auto& x : w.warnings)
+    if (x.code == "overhang-near-bed") rule = x.message.substr(x.message.find("rule when"));
+  REQUIRE(rule == "rule when layer.z_bottom < 0.4 mm { support_z_gap = 0 mm }");
+  Run t = run(dir, "touched", m, {{"support", "normal"}}, rule + "\n");
+  REQUIRE_MESSAGE(t.result.ok(), (t.result.ok() ? "" : t.result.error().to_string()));
+  CHECK_FALSE(has_warning(t, "overhang-near-bed"));
+  bool under = false;
+  for (const auto& mv : t.g.moves)
+    under |= extrudes(mv) && is_support(mv) && mv.layer == 0;
+  CHECK(under);
 }
 
 TEST_CASE("raft: layers of support under the whole first layer, the part a gap above them, the skirt round it") {
