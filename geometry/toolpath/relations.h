@@ -102,7 +102,7 @@ class Neighbours {
 
 // For each piece of the polyline `pts`, the fraction of a bead `width_mm` wide along it that
 // does not rest on the material `below` (0..1), sampled across the bead at a quarter, half and
-// three quarters of the piece.
+// three quarters of the piece (at its middle only when it is shorter than the bead is wide).
 std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below);
 
 // How far along a path piece.overhang is averaged: a piece shorter than this takes the
