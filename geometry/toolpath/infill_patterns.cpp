@@ -110,7 +110,7 @@ struct GyroidBranch {
     } else {  // cos s sin t + sin gz cos t = −sin s cos gz  (t: x, s: y)
       A = std::cos(s), B = sz, C = -std::sin(s) * cz;
     }
-    const double R = std::hypot(A, B), phi = std::atan2(B, A);  // A sin t + B cos t = R sin(t + φ)
+    const double R = norm(A, B), phi = std::atan2(B, A);  // A sin t + B cos t = R sin(t + φ)
     const double q = std::asin(std::clamp(C / R, -1.0, 1.0));
     return (fam == 0 ? q : kPi - q) - phi;
   }
