@@ -13,8 +13,10 @@ stair-step (cusp) h·|n_z|, measured across the surface; a horizontal facet stri
 layer leaves its distance to the nearer layer boundary. A facet reaching less than 1 µm into a
 layer (the G-code's z resolution) does not count in it. The first layer is left out (every
 slicer prints first_layer_height there). Reported: the layer count, the largest cusp of any
-layer, and the mean cusp over the surface (each facet's cusp in each layer it crosses, weighted
-by its area in that layer).
+layer, the mean cusp over the surface (each facet's cusp in each layer it crosses, weighted
+by its area in that layer), and the largest change of height between neighbouring layers
+(above the first and below the last two, where the rest under the top is shared: how smooth
+the profile is).
 
 `prusa-plan` computes the layer tops PrusaSlicer's adaptive layer heights would give
 (PrusaSlicer 2.5's SlicingAdaptive, re-derived from its description: the allowed deviation is
@@ -160,7 +162,9 @@ def main():
         f = Facets(model)
         tops = gcode_tops(gcode) if not gcode.endswith('.txt') else [float(x) for x in open(gcode)]
         n, worst, mean = cusps(f, tops)
-        print(f'{name}\t{slicer}\t{n}\t{worst:.3f}\t{mean:.4f}\t{verdict}')
+        hs = [b - a for a, b in zip(tops, tops[1:])][:-2]
+        jump = max((abs(b - a) for a, b in zip(hs, hs[1:])), default=0.0)
+        print(f'{name}\t{slicer}\t{n}\t{worst:.3f}\t{mean:.4f}\t{verdict}\t{jump:.3f}')
     elif len(sys.argv) >= 2 and sys.argv[1] == 'prusa-plan':
         model, q, hmin, hmax, hmid, first = sys.argv[2], *map(float, sys.argv[3:8])
         for z in prusa_plan(Facets(model), q, hmin, hmax, hmid, first):
@@ -169,9 +173,10 @@ def main():
         prusa_3mf(*sys.argv[2:5])
     elif len(sys.argv) >= 2 and sys.argv[1] == 'table':
         rows = [l.rstrip('\n').split('\t') for l in open(sys.argv[2]) if l.strip()]
-        print(f'{"model":<24} {"slicer":<34} {"layers":>6} {"max cusp":>9} {"mean cusp":>10}  gcheck')
+        print(f'{"model":<24} {"slicer":<34} {"layers":>6} {"max cusp":>9} {"mean cusp":>10} {"max step":>9}  gcheck')
         for r in rows:
-            print(f'{r[0]:<24} {r[1]:<34} {r[2]:>6} {r[3]:>9} {r[4]:>10}  {r[5]}')
+            step = r[6] if len(r) > 6 else '-'
+            print(f'{r[0]:<24} {r[1]:<34} {r[2]:>6} {r[3]:>9} {r[4]:>10} {step:>9}  {r[5]}')
         by = {}
         for r in rows:
             by.setdefault(r[0], {})[r[1]] = r

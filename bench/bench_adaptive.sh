@@ -9,7 +9,9 @@
 # count, the largest and the mean cusp height (from the mesh's facet normals and the layer
 # tops of the G-code, first layer left out: adaptive_cusp.py), and gcheck's verdict on the
 # G-code. Goal: fewer layers than PrusaSlicer's adaptive at the same or a smaller largest cusp.
-# A row at adaptive_quality 75% shows the trade-off (more layers, smaller cusps).
+# A row at adaptive_quality 75% shows the trade-off (more layers, smaller cusps), one without
+# smoothing (adaptive_smoothing=0) what the smoothing costs in layers; "max step" is the largest
+# change of height between neighbouring layers.
 #   bench/bench_adaptive.sh [BUILD_DIR]      env: MODELS, GCHECK=path/to/gcheck.py, OUT=dir to keep files
 set -uo pipefail
 build=${1:-build}
@@ -45,7 +47,7 @@ else:
 EOP
 }
 while read -r name model; do
-  for s in tranche_adaptive tranche_adaptive75 tranche prusa prusa_adaptive; do
+  for s in tranche_adaptive tranche_adaptive_s0 tranche_adaptive75 tranche prusa prusa_adaptive; do
     g="$out/$name.$s.gcode"
     case $s in
       tranche_adaptive)  # the benchmark's --set layer_height would decide every layer: left out
@@ -53,6 +55,11 @@ while read -r name model; do
         keep=()
         for a in "${CMD[@]}"; do [[ $a == layer_height=* ]] && unset 'keep[-1]' || keep+=("$a"); done
         CMD=("${keep[@]}" "${ADAPTIVE[@]}") ;;
+      tranche_adaptive_s0)  # the same without smoothing: what adaptive_smoothing costs and buys
+        label="tranche adaptive q=0.5 unsmoothed"; peer_cmd tranche "$model" "$g"
+        keep=()
+        for a in "${CMD[@]}"; do [[ $a == layer_height=* ]] && unset 'keep[-1]' || keep+=("$a"); done
+        CMD=("${keep[@]}" "${ADAPTIVE[@]}" --set adaptive_smoothing=0) ;;
       tranche_adaptive75)
         label="tranche adaptive q=0.75"; peer_cmd tranche "$model" "$g"
         keep=()

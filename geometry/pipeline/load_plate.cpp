@@ -127,8 +127,11 @@ Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const 
   ap.min_height = P[schema::PropId::MinLayerHeight];
   ap.max_height = P[schema::PropId::MaxLayerHeight];
   ap.quality = P[schema::PropId::AdaptiveQuality];
+  ap.smoothing = static_cast<int>(P[schema::PropId::AdaptiveSmoothing]);
   if (adaptive)
     if (Status s = geo::check_adaptive(ap); !s) return s.error();
+  // The smoothing's cap on the planner's heights (none without adaptive layers or smoothing).
+  const geo::SmoothHeights smooth = adaptive && slopes ? geo::SmoothHeights(*slopes, ap) : geo::SmoothHeights();
   // layer.max_slope looks max_layer_height ahead (at least 1 µm, for bounds adaptive_layers
   // does not check when it is off).
   const double ahead = std::isfinite(ap.max_height) ? std::max(0.001, ap.max_height) : 0.3;
@@ -138,13 +141,24 @@ Result<std::vector<geo::Layer>> plan_heights(const ctx::Cascade& cascade, const 
   size_t planned_layers = 0, overridden = 0;  // layers after the first, and those a rule decided
   geo::LayerHeightParams params;
   params.height = [&](int index, double z_bottom) {
-    const double planned = adaptive ? (slopes ? slopes->adaptive_height(z_bottom, ap) : ap.max_height) : 0.0;
+    const double planned = adaptive ? (slopes ? slopes->adaptive_height(z_bottom, ap, smooth.cap(z_bottom)) : ap.max_height) : 0.0;
     auto h = cascade.layer_height(print.ctx, P, index, z_bottom, max_slope(z_bottom), planned);
     if (!h) {
       if (error) error = h.error();
       return 0.2;
     }
-    if (index > 0) ++planned_layers, overridden += *h != planned;
+    if (index > 0) {
+      ++planned_layers;
+      // Decided by a rule or --set when it differs from the planner's height, or, when it
+      // matches it (a layer planned where a fixed height would put it too), when it does not
+      // follow the planner's height moved a little.
+      bool decided = *h != planned;
+      if (!decided && adaptive) {
+        auto again = cascade.layer_height(print.ctx, P, index, z_bottom, max_slope(z_bottom), planned * (1 + 1e-6));
+        decided = again && *again == *h;
+      }
+      overridden += decided;
+    }
     return *h;
   };
   auto layers = geo::plan_layer_heights(top, params);

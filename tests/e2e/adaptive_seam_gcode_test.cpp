@@ -133,6 +133,54 @@ TEST_CASE("adaptive layers e2e: a sphere gets thick layers at its equator, thin 
   CHECK(fine.layer_z.rbegin()->second == doctest::Approx(20));
 }
 
+// A 10 mm cylinder (vertical: 0.3 mm layers) under a 2 mm cone 11° from flat (0.19 mm layers):
+// a bottom disc, the wall and the cone up to its apex, one closed shell.
+geo::Mesh wall_then_roof() {
+  const int n = 96;
+  geo::Mesh m;
+  m.vertices.push_back({0, 0, 0});
+  m.vertices.push_back({0, 0, 12});
+  for (double z : {0.0, 10.0})
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * M_PI * k / n;
+      m.vertices.push_back({10 * std::cos(a), 10 * std::sin(a), z});
+    }
+  for (uint32_t k = 0; k < static_cast<uint32_t>(n); ++k) {
+    const uint32_t k1 = (k + 1) % n, b0 = 2 + k, b1 = 2 + k1, t0 = 2 + n + k, t1 = 2 + n + k1;
+    m.triangles.push_back({0, b1, b0});  // the bottom, seen from below
+    m.triangles.push_back({b0, b1, t1});
+    m.triangles.push_back({b0, t1, t0});
+    m.triangles.push_back({t0, t1, 1});  // the cone up to the apex
+  }
+  return m;
+}
+
+// The largest change of height between neighbouring layers, the first and the last two left out.
+double max_step(const std::vector<double>& h) {
+  double m = 0;
+  for (size_t i = 2; i + 2 < h.size(); ++i) m = std::max(m, std::abs(h[i] - h[i - 1]));
+  return m;
+}
+
+TEST_CASE("adaptive layers e2e: adaptive_smoothing ramps the height down before a flatter surface") {
+  test::TempDir dir("adaptive-smooth");
+  const geo::Mesh m = wall_then_roof();
+  auto raw = heights(slice(dir, "raw", m, {{"adaptive_layers", "true"}, {"adaptive_smoothing", "0"}}));
+  auto smooth = heights(slice(dir, "smooth", m, {{"adaptive_layers", "true"}}));  // 5 layers by default
+  CHECK(max_step(raw) > 0.08);
+  CHECK(max_step(smooth) <= 1.25 * (0.3 - 0.07) / 5);
+  CHECK(smooth.size() >= raw.size());
+  CHECK(smooth.size() <= raw.size() + 5);
+  for (size_t i = 1; i < smooth.size(); ++i) {
+    CHECK(smooth[i] >= 0.07 - 1e-6);
+    CHECK(smooth[i] <= 0.3 + 1e-6);
+  }
+  // A negative smoothing is out of range, refused with the property's name.
+  auto bad = run(dir, "bad", m, "", {{"adaptive_layers", "true"}, {"adaptive_smoothing", "-1"}});
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().to_string().find("adaptive_smoothing") != std::string::npos);
+}
+
 TEST_CASE("adaptive layers e2e: a layer_height rule overrides the planner on the layers it matches") {
   test::TempDir dir("adaptive-rule");
   auto g = slice(dir, "ball", ball(10), {{"adaptive_layers", "true"}},
