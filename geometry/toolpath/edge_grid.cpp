@@ -75,6 +75,30 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   items_.resize(count[cells]);
   for (uint32_t i = 0; i < edges_.size(); ++i)
     each_cell(edges_[i], [&](size_t c) { items_[count[c]++] = i; });
+  // A cell no edge passes through is wholly inside or wholly outside: its centre's answer, found
+  // for a whole row at once (right to left, the crossings of the row's middle line counted in
+  // the column that holds them, as inside() counts them), answers inside() there in one step.
+  empty_in_.assign(cells, -1);
+  for (int row = 0; row < ny_; ++row) {
+    const double y = static_cast<double>(y0_) + (row + 0.5) * static_cast<double>(cell_);
+    bool in = false;
+    for (int c = nx_ - 1; c >= 0; --c) {
+      const size_t id = static_cast<size_t>(row) * nx_ + c;
+      if (start_[id] == start_[id + 1]) {
+        empty_in_[id] = in ? 1 : 0;
+        continue;
+      }
+      const double lo = c == 0 ? -1e300 : static_cast<double>(x0_ + coord_t(c) * cell_);
+      const double hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
+      for (uint32_t k = start_[id]; k < start_[id + 1]; ++k) {
+        const Edge& e = edges_[items_[k]];
+        const double ay = static_cast<double>(e.a.Y), by = static_cast<double>(e.b.Y);
+        if ((ay > y) == (by > y)) continue;
+        const double x = static_cast<double>(e.a.X) + (y - ay) * static_cast<double>(e.b.X - e.a.X) / (by - ay);
+        if (x >= lo && x < hi) in = !in;
+      }
+    }
+  }
 }
 
 int EdgeGrid::cx(coord_t x) const {
@@ -158,8 +182,9 @@ bool EdgeGrid::inside(const Point& p) const {
   if (edges_.empty()) return false;
   if (p.X < x0_ || p.Y < y0_ || p.X > x0_ + coord_t(nx_) * cell_ || p.Y > y0_ + coord_t(ny_) * cell_)
     return false;
-  // Ray to +x; each crossing is counted in the one column that contains its x.
   int row = cy(p.Y);
+  if (const int8_t known = empty_in_[static_cast<size_t>(row) * nx_ + cx(p.X)]; known >= 0) return known == 1;
+  // Ray to +x; each crossing is counted in the one column that contains its x.
   bool in = false;
   for (int c = cx(p.X); c < nx_; ++c) {
     double col_lo = static_cast<double>(x0_ + coord_t(c) * cell_);
@@ -207,6 +232,13 @@ std::vector<EdgeGrid::Hit> EdgeGrid::hits(const Point& a, const Point& b) const 
 
 double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
   if (edges_.empty()) return 0.0;
+  // Both ends in one cell no edge passes through (a bead's width across, deep inside or far
+  // outside a layer, as most are): the cell's answer.
+  auto in_box = [&](const Point& p) {
+    return p.X >= x0_ && p.Y >= y0_ && p.X <= x0_ + coord_t(nx_) * cell_ && p.Y <= y0_ + coord_t(ny_) * cell_;
+  };
+  if (cx(a.X) == cx(b.X) && cy(a.Y) == cy(b.Y) && in_box(a) && in_box(b))
+    if (const int8_t known = empty_in_[static_cast<size_t>(cy(a.Y)) * nx_ + cx(a.X)]; known >= 0) return known;
   std::vector<double> ts;
   visit_segment_cells(a, b, [&](int x, int y) {
     size_t c = static_cast<size_t>(y) * nx_ + x;

@@ -50,6 +50,7 @@ class EdgeGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> start_;  // CSR: edges of cell i are items_[start_[i] .. start_[i+1])
   std::vector<uint32_t> items_;
+  std::vector<int8_t> empty_in_;  // per cell: 1 inside, 0 outside when no edge passes through it; -1 else
 };
 
 // Exact orientation of c relative to the directed line ab: >0 left, <0 right, 0 collinear.

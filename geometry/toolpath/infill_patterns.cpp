@@ -380,7 +380,7 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   // narrower than a bead (whose border would run back over itself): the region shrunk by
   // d_k + half a bead, grown back by half a bead. Erosions by discs add up, so the shrunk region
   // is carried from loop to loop (a pitch further each time) and each loop costs two offsets of
-  // that region, by one offsetter (its input prepared once). Each step starts from a copy
+  // that region. Each step starts from a copy
   // simplified to 10 µm: a finely tessellated curve shrunk by many times its edges' length would
   // make every offset edge cross its neighbours'. Infill needs no arc finer than 25 µm
   // (offset_coarse's), and its loops are simplified to 10 µm: the offsets of
@@ -390,13 +390,10 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   constexpr geo::coord_t kTol = 10000;
   geo::Rings eroded = offset_coarse(simplify(region, kTol), -(first + half)), next;
   for (int k = 0; k < 100000 && !eroded.empty(); ++k, eroded = std::move(next)) {
-    // One offsetter for both: the loop (grown by half a bead) and the next shrunk region.
-    ClipperLib::ClipperOffset co(2.0, 25000);
-    co.AddPaths(simplify(eroded, kTol), ClipperLib::jtRound, ClipperLib::etClosedPolygon);
-    geo::Rings loops;
-    co.Execute(loops, half * geo::kUnitsPerMm);
-    co.Execute(next, -pitch_mm * geo::kUnitsPerMm);
-    loops = simplify(loops, kTol);
+    // The loop (grown by half a bead) and the next shrunk region, from the same simplified copy.
+    const geo::Rings src = simplify(eroded, kTol);
+    geo::Rings loops = simplify(offset_coarse(src, half), kTol);
+    next = offset_coarse(src, -pitch_mm);
     if (loops.empty()) break;
     std::stable_sort(loops.begin(), loops.end(),
                      [](const geo::Ring& a, const geo::Ring& b) { return ClipperLib::Area(a) > ClipperLib::Area(b); });

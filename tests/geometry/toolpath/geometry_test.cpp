@@ -271,3 +271,49 @@ TEST_CASE("clip: offsets agree with Clipper's on curved, thin and holed shapes")
   }
   CHECK(compared == 400);
 }
+
+TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
+  // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
+  uint32_t seed = 777;
+  auto rnd = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) / double(1 << 24);
+  };
+  auto even_odd = [](const geo::Rings& rings, double x, double y) {
+    bool in = false;
+    for (const auto& r : rings)
+      for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+        const double xi = double(r[i].X), yi = double(r[i].Y), xj = double(r[j].X), yj = double(r[j].Y);
+        if ((yi > y) != (yj > y) && x < xi + (y - yi) * (xj - xi) / (yj - yi)) in = !in;
+      }
+    return in;
+  };
+  for (int shape = 0; shape < 12; ++shape) {
+    const double r = 2 + 20 * rnd();
+    geo::Rings rings{blob(0, 0, r, 0.3 * rnd(), 2 + shape % 5, 6 * rnd(), 20 + static_cast<int>(300 * rnd()))};
+    if (shape % 2) rings.push_back(blob(0.1 * r, 0, 0.4 * r, 0.1, 3, 1, 40, false));
+    const EdgeGrid g(rings);
+    int checked = 0;
+    for (int k = 0; k < 2000; ++k) {
+      // Points off the integer grid by half a unit: never on an edge.
+      const double x = (rnd() * 2.6 - 1.3) * r, y = (rnd() * 2.6 - 1.3) * r;
+      const geo::Point p(std::llround(x * geo::kUnitsPerMm), std::llround(y * geo::kUnitsPerMm));
+      const bool expect = even_odd(rings, double(p.X) + 0.5, double(p.Y) + 0.5);
+      if (g.inside(p) != expect) {
+        // Only a point within a unit of an edge may differ (on it, either answer is right).
+        CHECK(g.crosses(geo::Point(p.X - 1, p.Y - 1), geo::Point(p.X + 1, p.Y + 1)));
+        continue;
+      }
+      ++checked;
+      // A bead's width across from p: its inside fraction against 41 samples along it.
+      const geo::Point q(p.X + std::llround(0.45 * geo::kUnitsPerMm * std::cos(k)),
+                         p.Y + std::llround(0.45 * geo::kUnitsPerMm * std::sin(k)));
+      int in = 0;
+      for (int s = 0; s <= 40; ++s)
+        in += even_odd(rings, double(p.X) + (double(q.X) - double(p.X)) * s / 40.0 + 0.5,
+                       double(p.Y) + (double(q.Y) - double(p.Y)) * s / 40.0 + 0.5);
+      CHECK(g.inside_fraction(p, q) == Approx(in / 41.0).epsilon(0.05).scale(1.0));
+    }
+    CHECK(checked > 1900);
+  }
+}
