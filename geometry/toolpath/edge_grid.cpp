@@ -230,6 +230,21 @@ std::vector<EdgeGrid::Hit> EdgeGrid::hits(const Point& a, const Point& b) const 
   return out;
 }
 
+int EdgeGrid::box_state(coord_t bx0, coord_t by0, coord_t bx1, coord_t by1) const {
+  if (edges_.empty()) return 0;
+  if (bx1 < x0_ || by1 < y0_ || bx0 > x1_ || by0 > y1_) return 0;  // clear of every edge: outside
+  if (bx0 < x0_ || by0 < y0_ || bx1 > x0_ + coord_t(nx_) * cell_ || by1 > y0_ + coord_t(ny_) * cell_) return -1;
+  const int c0 = cx(bx0), c1 = cx(bx1), r0 = cy(by0), r1 = cy(by1);
+  int state = -2;
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      const int8_t k = empty_in_[static_cast<size_t>(r) * nx_ + c];
+      if (k < 0 || (state != -2 && k != state)) return -1;
+      state = k;
+    }
+  return state;
+}
+
 double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
   if (edges_.empty()) return 0.0;
   // Both ends in one cell no edge passes through (a bead's width across, deep inside or far

@@ -26,6 +26,10 @@ class EdgeGrid {
   bool inside(const geo::Point& p) const;
   // Fraction (0..1) of segment ab lying inside the rings (even-odd).
   double inside_fraction(const geo::Point& a, const geo::Point& b) const;
+  // 1 when every cell the box [x0, x1] × [y0, y1] meets holds no edge and lies inside, 0 when
+  // every one holds none and lies outside (the box is then wholly inside, resp. outside), -1
+  // otherwise. A few cells' flags, for many small questions about a region's interior.
+  int box_state(geo::coord_t x0, geo::coord_t y0, geo::coord_t x1, geo::coord_t y1) const;
 
   // Where segment ab crosses edges: parameter t along ab (0..1), the ring and the edge's index in
   // it (edge i runs from ring[i] to ring[i + 1]). Sorted by t; collinear overlaps are left out.

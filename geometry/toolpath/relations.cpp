@@ -148,6 +148,14 @@ std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, con
     const geo::Point &a = pts[i], &b = pts[i + 1];
     double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
     if (len <= 0) continue;
+    // A bead wholly inside (outside) the layer below's cells that hold no edge: 0 (1).
+    const geo::coord_t h = static_cast<geo::coord_t>(std::ceil(half)) + 1;
+    if (const int s = below.box_state(std::min(a.X, b.X) - h, std::min(a.Y, b.Y) - h, std::max(a.X, b.X) + h,
+                                      std::max(a.Y, b.Y) + h);
+        s >= 0) {
+      out[i] = s == 1 ? 0.0f : 1.0f;
+      continue;
+    }
     double nx = -dy / len * half, ny = dx / len * half;
     // Across the bead at a quarter, half and three quarters of the piece; at its middle only
     // when it is shorter than a bead (a curved wall's many short pieces: their neighbours are

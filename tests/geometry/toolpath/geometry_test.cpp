@@ -315,5 +315,20 @@ TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd cou
       CHECK(g.inside_fraction(p, q) == Approx(in / 41.0).epsilon(0.05).scale(1.0));
     }
     CHECK(checked > 1900);
+    // box_state: a box said wholly inside (outside) has every sampled point inside (outside).
+    int decided = 0;
+    for (int k = 0; k < 300; ++k) {
+      const double x = (rnd() * 2.4 - 1.2) * r, y = (rnd() * 2.4 - 1.2) * r, w = 0.2 + 2 * rnd();
+      const geo::coord_t x0 = std::llround(x * geo::kUnitsPerMm), y0 = std::llround(y * geo::kUnitsPerMm);
+      const geo::coord_t x1 = x0 + std::llround(w * geo::kUnitsPerMm), y1 = y0 + std::llround(w * geo::kUnitsPerMm);
+      const int s = g.box_state(x0, y0, x1, y1);
+      if (s < 0) continue;
+      ++decided;
+      for (int i = 0; i <= 6; ++i)
+        for (int j = 0; j <= 6; ++j)
+          CHECK(even_odd(rings, double(x0) + double(x1 - x0) * i / 6.0 + 0.5, double(y0) + double(y1 - y0) * j / 6.0 + 0.5) ==
+                (s == 1));
+    }
+    CHECK(decided > 20);
   }
 }
