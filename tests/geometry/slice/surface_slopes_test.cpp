@@ -109,10 +109,16 @@ TEST_CASE("adaptive layers: a 45° cone gets cusp / cos 45°, clamped to the bou
   CHECK(s.adaptive_height(3, p) == Approx(0.4));
 }
 
-TEST_CASE("adaptive layers: on a sphere, thin layers at the top and bottom, thick ones at the equator, every cusp within bounds") {
-  const double r = 10;
+// A sphere of radius r standing on the bed (96 × 64 facets).
+Mesh standing_sphere(double r) {
   Mesh m = sphere(r, 96, 64);
   m.transform(1, {0, 0, r});
+  return m;
+}
+
+TEST_CASE("adaptive layers: on a sphere, thin layers at the top and bottom, thick ones at the equator, every cusp within bounds") {
+  const double r = 10;
+  const Mesh m = standing_sphere(r);
   SurfaceSlopes s;
   s.add(m);
   const AdaptiveParams p{0.07, 0.3, 0.5};
@@ -253,8 +259,7 @@ TEST_CASE("adaptive smoothing: heights change by about (max − min) / smoothing
 
 TEST_CASE("adaptive smoothing: a sphere's layers ramp without jumps, every cusp within bounds") {
   const double r = 10;
-  Mesh m = sphere(r, 96, 64);
-  m.transform(1, {0, 0, r});
+  const Mesh m = standing_sphere(r);
   SurfaceSlopes s;
   s.add(m);
   AdaptiveParams p{0.07, 0.3, 0.5, 5};
