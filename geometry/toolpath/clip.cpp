@@ -122,9 +122,9 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
   const bool flip = lowest && !ClipperLib::Orientation(*lowest);
   Rings raw;
   raw.reserve(region.size());
-  if (ad < 1.0) {
+  if (ad < 1.0) {  // no offset: the rings themselves, turned the usual way round, united
     for (const auto& r : region)
-      if (r.size() >= 3) raw.push_back(r);
+      if (r.size() >= 3) raw.push_back(flip ? geo::Ring(r.rbegin(), r.rend()) : r);
   } else {
     double tol = arc_tolerance > 0 ? std::min(arc_tolerance, 0.25 * ad) : 0.25 * ad;
     double steps = M_PI / std::acos(1 - tol / ad);  // per full turn

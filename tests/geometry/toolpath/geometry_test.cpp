@@ -332,3 +332,15 @@ TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd cou
     CHECK(decided > 20);
   }
 }
+
+TEST_CASE("clip: rings listed clockwise (outers) are offset as Clipper offsets them, by zero too") {
+  // A square with a hole, both rings reversed: the region is the same, read the other way round.
+  geo::Rings cw{test::rect(0, 0, 10, 10, false), test::rect(3, 3, 7, 7, true)};
+  for (double d : {0.0, 0.5, -0.5}) {
+    INFO("offset " << d);
+    const geo::Rings ours = toolpath::offset(cw, d), theirs = clipper_offset(cw, d, 5000);
+    CHECK(area_mm2(ours) == Approx(area_mm2(theirs)).epsilon(1e-4));
+    CHECK(area_mm2(ours) > 0);  // outers counter-clockwise in the result
+  }
+  CHECK(area_mm2(toolpath::offset(cw, 0)) == Approx(100 - 16).epsilon(1e-9));
+}
