@@ -18,15 +18,9 @@ build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/peers/common.sh"
 bench_setup "$build" || { echo "bench_adaptive: cannot build tranche"; exit 1; }
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
-[[ -f $GCHECK ]] || { echo "bench_adaptive: gcheck not found (set GCHECK=path/to/gcheck.py)"; exit 1; }
+bench_need_gcheck bench_adaptive
 MODELS=${MODELS:-sphere stanford_bunny_closed}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-adaptive-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out"
-export LC_ALL=C
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir adaptive
 ADAPTIVE=(--set adaptive_layers=true --set adaptive_quality=50% --set min_layer_height=0.07 --set max_layer_height=0.3)
 # gcheck's verdict for MODEL GCODE. gcheck expects height / 0.2 mm layers (its --layer-height,
 # which also bounds the per-layer thicknesses it accepts: 0.04 to 0.4 mm, within which it uses

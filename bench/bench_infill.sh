@@ -16,13 +16,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 bench_setup "$build" || { echo "bench_infill: cannot build tranche"; exit 1; }
 MODELS=${MODELS:-sphere cone bunny plate_holes}
 PATTERNS=${PATTERNS:-zigzag grid triangles cubic gyroid honeycomb concentric lightning}
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-infill-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out"
-export LC_ALL=C
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir infill
 while read -r name model; do
   for p in $PATTERNS; do
     for s in tranche prusa; do

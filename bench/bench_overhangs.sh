@@ -27,15 +27,8 @@ build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/peers/common.sh"
 bench_setup "$build" || { echo "bench_overhangs: cannot build tranche"; exit 1; }
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
 SLICERS=${SLICERS:-tranche tranche_nosteps prusa}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-overhangs-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out/models"
-export LC_ALL=C
-
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir overhangs models
 while read -r name model; do
   [[ -n ${MODELS:-} && " $MODELS " != *" $name "* ]] && continue
   [[ -f $model ]] || continue

@@ -14,20 +14,10 @@ build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/peers/common.sh"
 bench_setup "$build" || { echo "bench_quality: cannot build tranche"; exit 1; }
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
-if [[ ! -f $GCHECK ]]; then
-  echo "bench_quality: gcheck not found (set GCHECK=path/to/gcheck.py)"
-  exit 1
-fi
+bench_need_gcheck bench_quality
 SLICERS=${SLICERS:-tranche tranche_comb prusa cura}
 MODELS=${MODELS:-bunny torus M3_hex_nut M3x10_screw sphere cone stanford_bunny stanford_bunny_closed plate_holes}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-quality-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out"
-export LC_ALL=C
-
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir quality
 while read -r name model; do
   for s in $SLICERS; do
     [[ $s == prusa ]] && ! command -v prusa-slicer >/dev/null && continue

@@ -11,15 +11,9 @@ build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/peers/common.sh"
 bench_setup "$build" || { echo "bench_support: cannot build tranche"; exit 1; }
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
-[[ -f $GCHECK ]] || { echo "bench_support: gcheck not found (set GCHECK=path/to/gcheck.py)"; exit 1; }
+bench_need_gcheck bench_support
 MODELS=${MODELS:-mushroom ledge span slope bunny stanford_bunny_closed}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-support-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out"
-export LC_ALL=C
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir support
 while read -r name model; do
   for s in tranche_none tranche tranche_tree prusa; do
     g="$out/$name.$s.gcode"

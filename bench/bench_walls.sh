@@ -19,19 +19,9 @@ build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/peers/common.sh"
 bench_setup "$build" || { echo "bench_walls: cannot build tranche"; exit 1; }
-GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
-if [[ ! -f $GCHECK ]]; then
-  echo "bench_walls: gcheck not found (set GCHECK=path/to/gcheck.py)"
-  exit 1
-fi
+bench_need_gcheck bench_walls
 SLICERS=${SLICERS:-tranche_classic tranche_variable prusa_classic prusa_arachne}
-out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-walls-XXXXXX")}
-[[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
-mkdir -p "$out/models"
-export LC_ALL=C
-
-rows="$out/rows.tsv"
-: >"$rows"
+bench_workdir walls models
 while read -r name model _vol; do
   [[ -n ${MODELS:-} && " $MODELS " != *" $name "* ]] && continue
   for s in $SLICERS; do

@@ -28,6 +28,25 @@ bench_setup() {
 
 # Writes the generated models into $CACHE/bench (once) and prints NAME PATH lines for $1 (a
 # space-separated list of names, or "all").
+# gcheck for the quality columns: GCHECK (default: the workplace's copy), which `bench_need_gcheck
+# NAME` requires (a message naming the bench and exit 1 when it is missing).
+GCHECK=${GCHECK:-/work/shared/tools/gcheck/gcheck.py}
+bench_need_gcheck() {
+  [[ -f $GCHECK ]] || { echo "$1: gcheck not found (set GCHECK=path/to/gcheck.py)"; exit 1; }
+}
+
+# A bench's folder for its files: $OUT (kept) or a temporary one removed on exit, with SUBDIR
+# made in it; sets `out` and `rows` (an empty $out/rows.tsv) and LC_ALL=C for the number
+# formats. bench_workdir NAME [SUBDIR]
+bench_workdir() {
+  out=${OUT:-$(mktemp -d "${TMPDIR:-/tmp}/tranche-$1-XXXXXX")}
+  [[ -n ${OUT:-} ]] || trap 'rm -rf "$out"' EXIT
+  mkdir -p "$out/${2:-}"
+  export LC_ALL=C
+  rows="$out/rows.tsv"
+  : >"$rows"
+}
+
 bench_models() {
   local want=${1:-all} d="$CACHE/bench"
   "$ROOT/scripts/fetch-models.sh" >/dev/null 2>&1 || true
