@@ -78,6 +78,21 @@ double best_of(int runs, F f, double* cpu = nullptr) {
 }
 
 // Ten tori of 200 000 triangles each, of different sizes, side by side.
+// Loads every file of `files` onto one plate, all objects kept until the last is loaded (as a
+// plate keeps them); the number of objects, or -1 after saying why a file did not load.
+long load_plate(const std::vector<std::string>& files, Report& report) {
+  std::vector<plate::Object> plate;
+  for (const auto& file : files) {
+    auto o = plate::load_model_file(file, report);
+    if (!o) {
+      fmt::print(stderr, "plate_bench: {}\n", o.error().to_string());
+      return -1;
+    }
+    for (auto& x : *o) plate.push_back(std::move(x));
+  }
+  return static_cast<long>(plate.size());
+}
+
 std::vector<plate::Object> load_set() {
   std::vector<plate::Object> out;
   for (int i = 0; i < 10; ++i) {
@@ -107,15 +122,7 @@ int load(const std::string& dir, int runs) {
   double stl_cpu = 0, three_cpu = 0, inflate_cpu = 0;
   const double stl_s = best_of(
       runs,
-      [&] {
-        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
-        for (const auto& f : stls) {
-          auto o = plate::load_model_file(f, report);
-          if (!o) return false;
-          for (auto& x : *o) plate.push_back(std::move(x));
-        }
-        return plate.size() == stls.size();
-      },
+      [&] { return load_plate(stls, report) == static_cast<long>(stls.size()); },
       &stl_cpu);
   size_t loaded = 0;
   const double three_s = best_of(
@@ -184,18 +191,7 @@ int read(int runs, const std::vector<std::string>& files) {
   double cpu = 0;
   const double s = best_of(
       runs,
-      [&] {
-        std::vector<plate::Object> plate;  // all kept until all are loaded, as a plate keeps them
-        for (const auto& file : files) {
-          auto o = plate::load_model_file(file, report);
-          if (!o) {
-            fmt::print(stderr, "plate_bench: {}\n", o.error().to_string());
-            return false;
-          }
-          for (auto& x : *o) plate.push_back(std::move(x));
-        }
-        return true;
-      },
+      [&] { return load_plate(files, report) >= 0; },
       &cpu);
   if (s < 0) return 1;
   rusage u{};
