@@ -28,6 +28,7 @@ class LayerTask final : public IslandHost {
       : S(s), nest_(s, c), L(index), nb_(s.layers, index, s.layer_cache.get()) {
     needs_ = IslandNeeds::of(nest_);
     overhang_ = nest_.reads(FieldId::PieceOverhang);
+    overhang_beyond_ = nest_.reads_beyond(Stage::Piece, FieldId::PieceOverhang);
   }
 
   Result<LayerPlan> run() {
@@ -63,7 +64,8 @@ class LayerTask final : public IslandHost {
   int L;
   toolpath::Neighbours nb_;
   IslandNeeds needs_;     // costly fields, computed only when read
-  bool overhang_ = false;
+  bool overhang_ = false;         // piece.overhang is read by some code
+  bool overhang_beyond_ = false;  // ... by code other than the piece decisions (then on every path)
   LayerPlan plan_;
   std::vector<std::vector<FillGrid>> regions_;  // per island (by index): its fill regions' edges
   schema::PathKind support_kind_ = schema::PathKind::Support;  // of the support island being built
@@ -188,11 +190,20 @@ Status LayerTask::path_level(IslandPlan* ip, PathPlan& p) {
 
 Status LayerTask::piece_level(PathPlan& p) {
   const size_t n = p.piece_count();
-  if (overhang_ && L > 0 && n > 0)
+  // The rules this path's own fields leave in play say whether speed and flow vary along it and
+  // whether piece.overhang is needed (the default overhang steps: on walls only).
+  bool vary = false, overhang = overhang_beyond_;
+  if (n > 0 && (nest_.per_piece() || (overhang_ && !overhang))) {
+    auto dep = nest_.piece_dependence();
+    if (!dep) return dep.error();
+    vary = nest_.per_piece() && dep->level >= Level::Piece;
+    overhang = overhang || dep->fields[static_cast<size_t>(FieldId::PieceOverhang)];
+  }
+  if (overhang && L > 0 && n > 0)
     p.overhang = toolpath::average_along(toolpath::overhang_fractions(p.pts, p.width, nb_.below_grid()), p.pts,
                                          toolpath::kOverhangWindowMm);
   PropertyValues props = p.props;
-  if (nest_.per_piece() && n > 0) {
+  if (vary) {
     p.pieces.resize(n);
     if (nest_.provenance()) p.piece_traces.assign(n, nullptr);
     for (size_t i = 0; i < n; ++i) {

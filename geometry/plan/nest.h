@@ -57,6 +57,12 @@ class Nest {
   bool executes() const { return C.executors() != nullptr; }
   bool replaces(schema::Level level) const { return C.replacers() && C.replacers()->has(level); }
   bool reads(schema::FieldId f) const { return C.reads(f); }
+  // Whether code other than the decisions of `stage` reads `f` (Cascade::reads_beyond).
+  bool reads_beyond(schema::Stage stage, schema::FieldId f) const { return C.reads_beyond(stage, f); }
+  // For the path entered last: what its piece decisions depend on, given which rules its own
+  // fields leave in play (Cascade::depends): whether speed and flow vary along it, and which
+  // costly piece fields they read.
+  Result<ctx::Decider::Dependence> piece_dependence() const { return C.depends(schema::Stage::Piece, ctx_); }
 
  private:
   const setup::PrintSetup& S;

@@ -42,6 +42,37 @@ schema::Level Cascade::varies_at(schema::Stage stage) const {
   return l;
 }
 
+Result<Decider::Dependence> Decider::depends(schema::Stage stage, const Context&) const {
+  Dependence d;
+  d.level = varies_at(stage);
+  if (d.level >= schema::stage_level(stage)) d.fields.set();
+  return d;
+}
+
+Result<Decider::Dependence> Cascade::depends(schema::Stage stage, const Context& c) const {
+  Decider::Dependence all;
+  for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
+                           static_cast<const Decider*>(&overrides_)}) {
+    if (!d) continue;
+    auto r = d->depends(stage, c);
+    if (!r) return r.error();
+    all.level = std::max(all.level, r->level);
+    all.fields |= r->fields;
+  }
+  return all;
+}
+
+bool Cascade::reads_beyond(schema::Stage stage, schema::FieldId field) const {
+  for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, static_cast<const Decider*>(&overrides_)})
+    if (d && d->reads(field)) return true;
+  if (rules_ && rules_->reads_beyond(stage, field)) return true;
+  // The rules usually also execute and replace: their reads_beyond() has counted those already.
+  const void* rules = rules_ ? dynamic_cast<const void*>(rules_) : nullptr;
+  if (executors_ && dynamic_cast<const void*>(executors_) != rules && executors_->reads(field)) return true;
+  if (replacers_ && dynamic_cast<const void*>(replacers_) != rules && replacers_->reads(field)) return true;
+  return false;
+}
+
 bool Cascade::reads(schema::FieldId field) const {
   for (const Decider* d : {static_cast<const Decider*>(&defaults_), middle_, rules_,
                            static_cast<const Decider*>(&overrides_)})

@@ -42,6 +42,12 @@ class Cascade {
   schema::Level varies_at(schema::Stage stage) const;
   // Whether any decider, executor or replacer reads `field` (costly fields are computed only then).
   bool reads(schema::FieldId field) const;
+  // What the decisions of `stage` depend on for the element `c` describes (Decider::depends,
+  // over every decider), and whether anything else reads `field` (Decider::reads_beyond, and
+  // every executor and replacer): a field only the decisions of `stage` read is computed only
+  // for the elements whose dependence names it.
+  Result<Decider::Dependence> depends(schema::Stage stage, const Context& c) const;
+  bool reads_beyond(schema::Stage stage, schema::FieldId field) const;
 
   const Executors* executors() const { return executors_; }
   const Replacers* replacers() const { return replacers_; }

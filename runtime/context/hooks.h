@@ -7,6 +7,7 @@
 // several threads with different contexts; implementations keep no mutable shared state.
 #pragma once
 
+#include <bitset>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,21 @@ class Decider {
   // Whether any decision reads `field`. Fields nobody reads and that are costly to compute
   // (island.supported, island.covered, piece.overhang) are then left at 0.
   virtual bool reads(schema::FieldId) const { return true; }
+
+  // What the decisions of `stage` depend on for the element `ctx` describes, which is the element
+  // just outside the stage's level (a path, for Stage::Piece): `level` is the deepest level they
+  // read for this element (below the stage's level: one decision holds for every element inside),
+  // `fields` the fields of that level or deeper they read, directly or through a collection
+  // (path.pieces). Rules whose conditions on outer fields fail for this element count for
+  // nothing. The default is varies_at(stage), with every field when that reaches the stage's level.
+  struct Dependence {
+    schema::Level level = schema::Level::Print;
+    std::bitset<schema::kFieldCount> fields;
+  };
+  virtual Result<Dependence> depends(schema::Stage stage, const Context& ctx) const;
+  // Whether anything other than the decisions of `stage` reads `field` (a field only those read
+  // need computing only for the elements depends() names it for). Default: reads(field).
+  virtual bool reads_beyond(schema::Stage, schema::FieldId field) const { return reads(field); }
 };
 
 // Where executor and replacer output goes: G-code text lines, without the newline.

@@ -60,6 +60,9 @@ class Machine {
   bool conj(uint32_t k, uint32_t r, bool& ok);
   // Whether every conjunct of rule r holds.
   bool test(uint32_t r, bool& result);
+  // The candidates of property q whose outer conjuncts hold for the element outside q's level
+  // (built once per such element and kept in the thread's state); null when q is not hoisted.
+  bool live_list(schema::PropId q, const ThreadState::Live*& found);
   // The candidate of property q that decides it, among those of rules before `below` (all when
   // UINT32_MAX): its index, or -1 when none matches.
   bool winner(schema::PropId q, uint32_t below, int& index);

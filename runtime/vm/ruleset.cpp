@@ -40,6 +40,7 @@ void RuleSet::analyse() {
   analyse_simple();
   analyse_constants();
   analyse_splits(facts);
+  analyse_dependence(facts);
 }
 
 // Per chunk: the innermost level it reads and whether it reads only fields; every field read.
@@ -48,41 +49,52 @@ RuleSet::ChunkFacts RuleSet::analyse_chunks() {
   ChunkFacts facts;
   facts.level.assign(p.chunks.size(), Level::Print);
   facts.pure.assign(p.chunks.size(), 1);
+  facts.own.assign(p.chunks.size(), Level::Print);
+  facts.stages.assign(p.chunks.size(), 0);
+  facts.fields.assign(p.chunks.size(), {});
   for (size_t c = 0; c < p.chunks.size(); ++c) {
     const Chunk& ch = p.chunks[c];
-    Level lv = Level::Print;
+    Level lv = Level::Print, own = Level::Print;
     for (uint32_t i = 0; i < ch.size; ++i) {
       const Instr& in = p.code[ch.start + i];
       const OpInfo& info = op_info(in.code());
       auto field = [&](uint16_t f) {
         reads_[f] = true;
-        lv = std::max(lv, schema::fields()[f].level);
+        facts.fields[c].set(f);
+        own = std::max(own, schema::fields()[f].level);
       };
       if (info.b == Operand::Field) field(in.b);
       if (info.c == Operand::Field) field(in.c);
       switch (in.code()) {
         case Op::Prop:
-        case Op::Inherit:
+        case Op::Inherit: {
           facts.pure[c] = 0;
-          lv = std::max(lv, schema::stage_level(schema::property(static_cast<schema::PropId>(in.b)).stage));
+          const Stage st = schema::property(static_cast<schema::PropId>(in.b)).stage;
+          facts.stages[c] |= 1u << static_cast<unsigned>(st);
+          lv = std::max(lv, schema::stage_level(st));
           break;
+        }
         case Op::Layer:
         case Op::LayerRel:
-          lv = std::max(lv, Level::Layer);
+          own = std::max(own, Level::Layer);
           break;
         case Op::Count:
         case Op::Elem: {
           facts.pure[c] = 0;
           auto coll = static_cast<Coll>(in.code() == Op::Count ? in.b : in.c);
-          lv = std::max(lv, coll == Coll::Islands ? Level::Layer : Level::Path);
-          if (in.code() == Op::Elem && coll != Coll::Points) reads_[in.d] = true;
+          own = std::max(own, coll == Coll::Islands ? Level::Layer : Level::Path);
+          if (in.code() == Op::Elem && coll != Coll::Points) {
+            reads_[in.d] = true;
+            facts.fields[c].set(in.d);
+          }
           break;
         }
         default:
           break;
       }
     }
-    facts.level[c] = lv;
+    facts.own[c] = own;
+    facts.level[c] = std::max(lv, own);
   }
   return facts;
 }
@@ -175,6 +187,67 @@ void RuleSet::analyse_splits(const ChunkFacts& facts) {
     }
     if (finest != st && std::any_of(levels.begin(), levels.end(), [&](Level lv) { return lv > decided; }))
       stage_props_[static_cast<size_t>(finest)].push_back(q);
+  }
+}
+
+// For depends() and reads_beyond(): per property and candidate, the deepest level its rule and
+// value read and the fields they read, where reading a property of the stage being decided does
+// not count (it is resolved from that stage's other candidates, which depends() covers too);
+// per stage, the fields read by any code other than the candidates of that stage's properties.
+void RuleSet::analyse_dependence(const ChunkFacts& facts) {
+  const Program& p = program_;
+  for (auto q : p.property_order) {
+    const auto qi = static_cast<size_t>(q);
+    const Stage st = schema::property(q).stage;
+    auto& own = dep_level_[qi];
+    auto& fields = dep_fields_[qi];
+    own.clear();
+    fields.clear();
+    for (const auto& c : p.props[qi]) {
+      Level lv = Level::Print;
+      FieldSet fs;
+      auto add = [&](uint32_t chunk) {
+        lv = std::max(lv, facts.own[chunk]);
+        fs |= facts.fields[chunk];
+        for (int s = 0; s < schema::kStageCount; ++s)
+          if (s != static_cast<int>(st) && (facts.stages[chunk] >> s & 1u))
+            lv = std::max(lv, schema::stage_level(static_cast<Stage>(s)));
+      };
+      const Rule& rule = p.rules[c.rule];
+      for (uint32_t k = rule.first; k < rule.first + rule.count; ++k) add(p.conjuncts[k].chunk);
+      add(c.chunk);
+      for (const auto& f : schema::fields())  // only those of the decision's level and deeper
+        if (f.level < schema::stage_level(st)) fs.reset(static_cast<size_t>(f.id));
+      own.push_back(lv);
+      fields.push_back(fs);
+    }
+  }
+  // Chunks used by anything but the candidates of stage s's properties read "beyond" s.
+  for (int s = 0; s < schema::kStageCount; ++s) {
+    FieldSet& beyond = beyond_[static_cast<size_t>(s)];
+    beyond.reset();
+    auto chunk = [&](uint32_t c) { beyond |= facts.fields[c]; };
+    auto rule = [&](uint32_t r) {
+      for (uint32_t k = p.rules[r].first; k < p.rules[r].first + p.rules[r].count; ++k) chunk(p.conjuncts[k].chunk);
+    };
+    for (size_t qi = 0; qi < p.props.size(); ++qi) {
+      if (static_cast<int>(schema::property(static_cast<schema::PropId>(qi)).stage) == s) continue;
+      for (const auto& c : p.props[qi]) {
+        rule(c.rule);
+        chunk(c.chunk);
+      }
+    }
+    for (const auto& level : p.hooks)
+      for (const auto& when : level)
+        for (const auto& c : when) {
+          rule(c.rule);
+          chunk(c.chunk);
+        }
+    for (const auto& level : p.replace)
+      for (const auto& c : level) {
+        rule(c.rule);
+        chunk(c.chunk);
+      }
   }
 }
 

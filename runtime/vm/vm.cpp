@@ -126,6 +126,33 @@ bool Machine::test(uint32_t r, bool& result) {
   return result = true, true;
 }
 
+bool Machine::live_list(schema::PropId q, const ThreadState::Live*& found) {
+  const auto qi = static_cast<size_t>(q);
+  const Level outer = rs_.decided_at_[qi];
+  const uint64_t key = outer > Level::Print ? ctx_.generation(static_cast<Level>(static_cast<int>(outer) - 1)) : 0;
+  found = nullptr;
+  if (key == 0) return true;
+  ThreadState::Live& live = st_.live[qi];
+  if (live.key != key || live.owner != rs_.uid_) {
+    const Candidates& cands = p_.props[qi];
+    const auto& split = rs_.split_[qi];
+    const uint32_t* list = rs_.split_list_.data();
+    ++rebuilds_;
+    live.entries.clear();
+    live.key = 0;  // not valid until built whole
+    for (uint32_t i = 0; i < cands.size(); ++i) {
+      bool ok = true;
+      for (uint32_t j = 0; j < split[i].outer && ok; ++j)
+        if (!conj(list[split[i].first + j], cands[i].rule, ok)) return false;
+      if (ok) live.entries.push_back({i, split[i].first + split[i].outer, split[i].inner});
+    }
+    live.key = key;
+    live.owner = rs_.uid_;
+  }
+  found = &live;
+  return true;
+}
+
 bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
   const auto qi = static_cast<size_t>(q);
   const Candidates& cands = p_.props[qi];
@@ -142,23 +169,11 @@ bool Machine::winner(schema::PropId q, uint32_t below, int& index) {
       if (!conj(ks[j], r, ok)) return false;
     return true;
   };
-  Level outer = rs_.decided_at_[qi];
-  uint64_t key = outer > Level::Print ? ctx_.generation(static_cast<Level>(static_cast<int>(outer) - 1)) : 0;
-  if (key != 0) {
-    ThreadState::Live& live = st_.live[qi];
-    if (live.key != key || live.owner != rs_.uid_) {
-      ++rebuilds_;
-      live.entries.clear();
-      for (uint32_t i = 0; i < cands.size(); ++i) {
-        bool ok;
-        if (!all(list + split[i].first, split[i].outer, cands[i].rule, ok)) return false;
-        if (ok) live.entries.push_back({i, split[i].first + split[i].outer, split[i].inner});
-      }
-      live.key = key;
-      live.owner = rs_.uid_;
-    }
+  const ThreadState::Live* live;
+  if (!live_list(q, live)) return false;
+  if (live) {
     const auto& levels = rs_.cand_level_[qi];
-    for (const auto& e : live.entries) {
+    for (const auto& e : live->entries) {
       if (e.candidate < start || levels[e.candidate] > limit_) continue;
       bool ok = true;
       for (uint32_t j = 0; j < e.count && ok; ++j)
@@ -485,6 +500,35 @@ Error Machine::error() const {
   else if (fault_ == Fault::SqrtNeg)
     help = "; take `sqrt(max(x, 0))` or guard it with `if`";
   return Error{where.empty() ? std::string("rules") : where, fmt::format("in {}: {}{}", rule, what, help)};
+}
+
+Result<ctx::Decider::Dependence> RuleSet::depends(Stage stage, const ctx::Context& c) const {
+  Dependence d;
+  const auto& list = stage_props_[static_cast<size_t>(stage)];
+  if (list.empty()) return d;
+  // Only outer conjuncts run here, and they read fields alone: no properties are needed.
+  Machine m(*this, c, nullptr);
+  for (auto q : list) {
+    const auto qi = static_cast<size_t>(q);
+    if (schema::property(q).stage != stage) {  // decided again at this finer stage: all of it counts
+      for (size_t i = 0; i < cand_level_[qi].size(); ++i) {
+        d.level = std::max(d.level, cand_level_[qi][i]);
+        d.fields |= dep_fields_[qi][i];
+      }
+      continue;
+    }
+    const ThreadState::Live* live;
+    if (!m.live_list(q, live)) return m.error();
+    auto add = [&](size_t i) {
+      d.level = std::max(d.level, dep_level_[qi][i]);
+      d.fields |= dep_fields_[qi][i];
+    };
+    if (live)
+      for (const auto& e : live->entries) add(e.candidate);
+    else
+      for (size_t i = 0; i < dep_level_[qi].size(); ++i) add(i);
+  }
+  return d;
 }
 
 Status RuleSet::decide(Stage stage, const ctx::Context& c, ctx::PropertyValues& props) const {

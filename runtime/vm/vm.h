@@ -24,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -62,6 +63,12 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   schema::Level varies_at(schema::Stage stage) const override { return varies_[static_cast<size_t>(stage)]; }
   // Decider, Executors and Replacers: whether any code reads the field.
   bool reads(schema::FieldId field) const override { return reads_[static_cast<size_t>(field)]; }
+  // Decider: over the candidates whose conjuncts on outer fields hold for the element (the live
+  // candidates of hoisting, kept for the decisions that follow).
+  Result<Dependence> depends(schema::Stage stage, const ctx::Context& ctx) const override;
+  bool reads_beyond(schema::Stage stage, schema::FieldId field) const override {
+    return beyond_[static_cast<size_t>(stage)][static_cast<size_t>(field)];
+  }
   // ctx::Executors
   bool has(schema::Level level, ctx::When when) const override;
   Status run(schema::Level level, ctx::When when, const ctx::Context& ctx, ctx::LineSink& out) const override;
@@ -92,14 +99,19 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   explicit RuleSet(Program p);
   // Done once by create() (ruleset.cpp), in this order.
   void analyse();
+  using FieldSet = std::bitset<schema::kFieldCount>;
   struct ChunkFacts {
     std::vector<schema::Level> level;  // per chunk: the innermost level it reads
     std::vector<uint8_t> pure;         // per chunk: 1 when it reads only fields
+    std::vector<schema::Level> own;    // per chunk: the innermost level of what it reads but properties
+    std::vector<uint32_t> stages;      // per chunk: a bit per stage whose properties it reads
+    std::vector<FieldSet> fields;      // per chunk: the fields it reads (also through collections)
   };
   ChunkFacts analyse_chunks();
   void analyse_simple();
   void analyse_constants();
   void analyse_splits(const ChunkFacts& facts);
+  void analyse_dependence(const ChunkFacts& facts);
   uint32_t cand_rule(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].rule; }
   uint32_t cand_chunk(schema::PropId q, int i) const { return program_.props[static_cast<size_t>(q)][static_cast<size_t>(i)].chunk; }
   friend class Machine;
@@ -131,6 +143,12 @@ class RuleSet final : public ctx::Decider, public ctx::Executors, public ctx::Re
   // again at a finer stage (schema::finest_stage: fill_angle per cell) leaves the candidates
   // reading that finer level out of its own stage's decision.
   std::array<std::vector<schema::Level>, schema::kPropCount> cand_level_;
+  // Per property and candidate (analyse_dependence): the deepest level and the fields its rule
+  // and value read, reads of the property's own stage left out; per stage, the fields read by
+  // code other than that stage's candidates.
+  std::array<std::vector<schema::Level>, schema::kPropCount> dep_level_;
+  std::array<std::vector<FieldSet>, schema::kPropCount> dep_fields_;
+  std::array<FieldSet, schema::kStageCount> beyond_{};
   struct Range {
     bool plain = false;  // a number without unit conversion: in range means stored as is
     double min = 0, max = 0;

@@ -629,3 +629,71 @@ TEST_CASE("vm: a quantifier compiles to a bounded loop: load, test, increment, j
   CHECK(has(vm::Op::Jmp));
   CHECK(vm::verify(p).ok());
 }
+
+TEST_CASE("vm: what a path's piece decisions depend on, given the rules its own fields leave in play") {
+  // The stdlib's overhang steps: on walls only, reading their own property (min(speed, ...)).
+  auto rs = test::rules(R"(
+rule "walls over air" when path.kind in (outer_perimeter, inner_perimeter) and piece.overhang >= 25% {
+  speed = min(speed, 20 mm/s)
+}
+rule "capped" when path.kind == infill { speed = min(speed, 60 mm/s) }
+rule "long pieces" when path.kind == skirt and piece.length > 5 mm { flow = 95% }
+rule "bridges" when path.kind == bridge and layer.index > 2 { flow = 80% }
+)");
+  REQUIRE(rs->varies_at(Stage::Piece) == Level::Piece);
+  ctx::Context c;
+  c.clear_from(Level::Layer);
+  c.set(FieldId::LayerIndex, 3);
+  auto at = [&](schema::PathKind kind) {
+    c.clear_from(Level::Path);
+    c.set(FieldId::PathKind, static_cast<double>(kind));
+    auto d = rs->depends(Stage::Piece, c);
+    REQUIRE(d.ok());
+    return *d;
+  };
+  auto overhang = static_cast<size_t>(FieldId::PieceOverhang);
+  auto length = static_cast<size_t>(FieldId::PieceLength);
+  // Infill: only "capped" is in play, and reading speed in its own rule does not make it vary.
+  auto infill = at(schema::PathKind::Infill);
+  CHECK(infill.level < Level::Piece);
+  CHECK(infill.fields.none());
+  // Walls vary along the path and need piece.overhang, not piece.length.
+  auto wall = at(schema::PathKind::OuterPerimeter);
+  CHECK(wall.level == Level::Piece);
+  CHECK(wall.fields[overhang]);
+  CHECK_FALSE(wall.fields[length]);
+  auto skirt = at(schema::PathKind::Skirt);
+  CHECK(skirt.level == Level::Piece);
+  CHECK(skirt.fields[length]);
+  CHECK_FALSE(skirt.fields[overhang]);
+  auto bridge = at(schema::PathKind::Bridge);
+  CHECK(bridge.level < Level::Piece);
+  CHECK(bridge.fields.none());
+  // Nothing but these piece decisions reads piece.overhang.
+  CHECK_FALSE(rs->reads_beyond(Stage::Piece, FieldId::PieceOverhang));
+  CHECK(rs->reads(FieldId::PieceOverhang));
+
+  // The same decisions as without asking: the live list depends() built is the one decide() uses.
+  c.clear_from(Level::Path);
+  c.set(FieldId::PathKind, static_cast<double>(schema::PathKind::OuterPerimeter));
+  REQUIRE(rs->depends(Stage::Piece, c).ok());
+  c.set(FieldId::PieceOverhang, 0.5);
+  CHECK(test::decide(*rs, Stage::Piece, c)[PropId::Speed] == 20);
+  c.set(FieldId::PieceOverhang, 0.1);
+  CHECK(test::decide(*rs, Stage::Piece, c)[PropId::Speed] != 20);
+}
+
+TEST_CASE("vm: piece.overhang read by a fan rule or a hook is read beyond the piece decisions") {
+  auto fan = test::rules(R"(rule when piece.overhang > 50% { fan = 100% })");
+  CHECK(fan->reads_beyond(Stage::Piece, FieldId::PieceOverhang));
+  auto hook = test::rules(R"(rule { before path { for pc in path.pieces { if pc.overhang > 50% { comment "air" } } } })");
+  CHECK(hook->reads_beyond(Stage::Piece, FieldId::PieceOverhang));
+  // A condition shared by a piece decision and a cooling one counts for the cooling one.
+  auto shared = test::rules(R"(rule when piece.overhang > 50% {
+  speed = 10 mm/s
+  fan = 100%
+})");
+  CHECK(shared->reads_beyond(Stage::Piece, FieldId::PieceOverhang));
+  auto piece_only = test::rules(R"(rule when piece.overhang > 50% { speed = 10 mm/s })");
+  CHECK_FALSE(piece_only->reads_beyond(Stage::Piece, FieldId::PieceOverhang));
+}
