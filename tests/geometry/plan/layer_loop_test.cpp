@@ -191,3 +191,39 @@ TEST_CASE("layer loop: island shape and the island under it, measured when a rul
   PrintFixture plain(layers, "", {{"skirt_loops", "0"}});
   for (const auto& ip : plain.plan(2).islands) CHECK((ip.min_width == 0 && !ip.convex && ip.below_area == 0));
 }
+
+TEST_CASE("layer loop: piece.overhang measured and speed decided per piece only on the paths whose rules read it") {
+  // Layers 0-1: a 20 mm square; layers 2-3: a 20 mm square shifted 5 mm out over the air.
+  auto layers = prism_layers(4, {square_mm(0, 0, 20, 20)});
+  for (int i = 2; i < 4; ++i) layers[static_cast<size_t>(i)].islands[0].shape.outer = square_mm(5, 0, 25, 20);
+  const char* rules =
+      "rule when path.kind == outer_perimeter and piece.overhang > 50% { speed = min(speed, 9 mm/s) }\n"
+      "rule when path.kind == infill { speed = min(speed, 70 mm/s) }\n";
+  PrintFixture f(layers, rules, {{"skirt_loops", "0"}, {"perimeters", "1"}});
+  auto lp = f.plan(2);
+  REQUIRE(lp.islands.size() == 1);
+  int walls = 0, fills = 0;
+  for (const auto& p : lp.islands[0].paths) {
+    if (p.kind == PathKind::OuterPerimeter) {
+      ++walls;
+      // Measured per piece; the piece over the air (x > 20) slowed, the others not.
+      CHECK(p.overhang.size() == p.piece_count());
+      CHECK(p.pieces.size() == p.piece_count());
+      auto slow = std::count_if(p.pieces.begin(), p.pieces.end(), [](const auto& pc) { return pc.speed == 9; });
+      CHECK(slow >= 1);
+      CHECK(slow < static_cast<long>(p.pieces.size()));
+    } else if (p.kind == PathKind::Infill || p.kind == PathKind::SolidInfill) {
+      ++fills;
+      // No rule in play reads a piece field: one decision, nothing measured.
+      CHECK(p.overhang.empty());
+      CHECK(p.pieces.size() == 1);
+    }
+  }
+  CHECK(walls == 1);
+  CHECK(fills > 0);
+  // A hook reading the pieces' overhang needs it on every path.
+  PrintFixture hooked(layers, std::string(rules) + "rule { after path { for pc in path.pieces { if pc.overhang > 99% { comment \"air\" } } } }\n",
+                      {{"skirt_loops", "0"}, {"perimeters", "1"}});
+  for (const auto& p : hooked.plan(2).islands[0].paths)
+    if (p.piece_count() > 0) CHECK(p.overhang.size() == p.piece_count());
+}
