@@ -3,11 +3,12 @@
 # --set infill_pattern=P and by PrusaSlicer with --fill-pattern P (our zigzag against its
 # rectilinear), all on the benchmark settings (bench/peers/, 20 % infill). infill_row.py counts
 # the sparse infill's plastic (;TYPE:Internal infill), trips and retractions per layer; time is
-# user seconds, compared to our own zigzag on the same model; gcheck's verdict on our G-code
+# user seconds (ours: the median of RUNS runs, default 3), compared to our own zigzag on the
+# same model; gcheck's verdict on our G-code
 # (when gcheck is found: GCHECK=path/to/gcheck.py). One table, then the geometric means per
 # pattern.
 #   bench/bench_infill.sh [BUILD_DIR]   env: MODELS (default: sphere cone bunny plate_holes),
-#                                           PATTERNS (default: all), OUT=dir to keep the files,
+#                                           PATTERNS (default: all), RUNS (default 3), OUT=dir to keep the files,
 #                                           GCHECK (default: /work/shared/tools/gcheck/gcheck.py)
 set -uo pipefail
 build=${1:-build}
@@ -31,8 +32,17 @@ while read -r name model; do
         [[ $p == zigzag ]] && pp=rectilinear
         CMD=("${CMD[@]:0:1}" --fill-pattern "$pp" "${CMD[@]:1}")
       fi
-      env -u DISPLAY /usr/bin/time -f %U -o "$out/$name.$p.$s.time" timeout 900 "${CMD[@]}" </dev/null \
-        >"$out/$name.$p.$s.log" 2>&1
+      # Our runs are short (a tenth of a second on the small models): each is run RUNS times and
+      # the median user time kept, measured to the microsecond (usertime.py).
+      runs=1
+      [[ $s == tranche ]] && runs=${RUNS:-3}
+      : >"$out/$name.$p.$s.times"
+      for ((r = 0; r < runs; r++)); do
+        env -u DISPLAY /usr/bin/python3 "$here/usertime.py" "$out/$name.$p.$s.time" timeout 900 "${CMD[@]}" \
+          </dev/null >"$out/$name.$p.$s.log" 2>&1
+        tail -1 "$out/$name.$p.$s.time" >>"$out/$name.$p.$s.times"
+      done
+      sort -g "$out/$name.$p.$s.times" | sed -n "$(((runs + 1) / 2))p" >"$out/$name.$p.$s.time"
       if [[ ! -s $g ]]; then
         echo "bench_infill: $s failed on $name with $p (see $out/$name.$p.$s.log)" >&2
         continue
