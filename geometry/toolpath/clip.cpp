@@ -12,6 +12,7 @@ using geo::Rings;
 
 namespace {
 constexpr double kArcTolerance = 5000;  // 5 µm
+__extension__ typedef __int128 Wide;  // exact cross products of coordinates
 
 Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
   Rings out;
@@ -31,7 +32,8 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
 // takes that detour at every closing vertex: on outlines sliced from curved meshes (most
 // vertices) it triples the points and makes every detour cross its neighbours, which was most of
 // the union's time.
-void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings& out) {
+// With `trim`, the trimmed curve below or nothing (`trimmed` false); else the curve with detours.
+void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings& out, bool trim, bool& trimmed) {
   // Consecutive duplicates carry no direction.
   geo::Ring p;
   p.reserve(ring.size());
@@ -59,6 +61,116 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
     r.emplace_back(static_cast<geo::coord_t>(std::llround(double(v.X) + nx * delta)),
                    static_cast<geo::coord_t>(std::llround(double(v.Y) + ny * delta)));
   };
+  auto arc = [&](const geo::Point& v, const Normal& a, double sin_a, double cos_a) {  // between a's and b's ends
+    if (cos_a >= cos_one_step) return;
+    const double turn = std::atan2(sin_a, cos_a);
+    const int steps = std::max(static_cast<int>(std::lround(steps_per_rad * std::abs(turn))), 1);
+    const double c = std::cos(turn / steps), s = std::sin(turn / steps);
+    double x = a.x, y = a.y;
+    for (int i = 1; i < steps; ++i) {
+      const double x2 = x * c - y * s;
+      y = x * s + y * c;
+      x = x2;
+      at(v, x, y);
+    }
+  };
+  // First the trimmed curve: where moved edges overlap, the point where they cross; a moved edge
+  // wholly behind that of a neighbour (a short edge of a tessellated curve, shorter than the
+  // overlap) is dropped and its neighbours are crossed instead, as the union would leave them.
+  // Edges stack up as they come; a consumed edge is the top one, whose only point is its start
+  // crossing. It gives up (the detours below then, for the union) where a consumed edge starts
+  // with a round join or the lines nearly turn back (more than 154°).
+  if (trim) {
+    struct Entry {
+      size_t edge;
+      double s, e;  // the part of the moved edge kept: from s to e along it (units)
+      bool round;   // it starts with a round join
+      size_t at;    // its points start at r[at]
+    };
+    size_t j0 = 0;  // the longest edge first: the last to be consumed
+    for (size_t i = 1; i < n; ++i)
+      if (nrm[i].len > nrm[j0].len) j0 = i;
+    auto origin = [&](size_t e, double& x, double& y) {
+      x = double(p[e].X) + nrm[e].x * delta;
+      y = double(p[e].Y) + nrm[e].y * delta;
+    };
+    std::vector<Entry> st;
+    st.reserve(64);
+    st.push_back({j0, -1e300, nrm[j0].len, false, 0});
+    bool ok = true;
+    for (size_t m = 1; m <= n && ok; ++m) {
+      const size_t b = (j0 + m) % n;
+      const Normal& nb = nrm[b];
+      const geo::Point& v = p[b];
+      for (;;) {
+        Entry& top = st.back();
+        const size_t a = top.edge;
+        const Normal& na = nrm[a];
+        const bool adjacent = (a + 1) % n == b;
+        const double sin_a = std::clamp(na.x * nb.y - nb.x * na.y, -1.0, 1.0);
+        const double cos_a = na.x * nb.x + na.y * nb.y;
+        if (sin_a * delta < 0 && !(std::abs(sin_a * delta) < 1.0 && cos_a > 0)) {  // overlap: cross
+          if (cos_a < -0.9) {  // nearly back: the crossing is far and ill-conditioned
+            ok = false;
+            break;
+          }
+          double ax, ay, bx, by;
+          origin(a, ax, ay);
+          origin(b, bx, by);
+          const double dax = -na.y, day = na.x, dbx = -nb.y, dby = nb.x;  // directions
+          const double den = dax * dby - day * dbx;
+          const double wx = bx - ax, wy = by - ay;
+          const double ta = (wx * dby - wy * dbx) / den, tb = (wx * day - wy * dax) / den;
+          if (ta < top.s) {  // a is consumed
+            if (st.size() == 1 || top.round) {
+              ok = false;
+              break;
+            }
+            r.resize(top.at);
+            st.pop_back();
+            continue;
+          }
+          if (ta > na.len + 1.0) {  // crossing past a's end: only a consumed edge's would be
+            ok = false;
+            break;
+          }
+          top.e = ta;
+          if (m == n) {  // back at the first edge
+            if (st.size() == 1 || tb > st[0].e) ok = false;
+          } else {
+            st.push_back({b, tb, nb.len, false, r.size()});
+          }
+          if (ok)
+            r.emplace_back(static_cast<geo::coord_t>(std::llround(ax + dax * ta)),
+                           static_cast<geo::coord_t>(std::llround(ay + day * ta)));
+          break;
+        }
+        // Straight on or opening: a must end where its edge does.
+        if (!adjacent || top.s > na.len) {
+          ok = false;
+          break;
+        }
+        top.e = na.len;
+        if (m == n) {
+          if (st.size() == 1 || 0 > st[0].e) ok = false;
+        } else {
+          st.push_back({b, 0, nb.len, !(std::abs(sin_a * delta) < 1.0 && cos_a > 0), r.size()});
+        }
+        if (!ok) break;
+        at(v, na.x, na.y);
+        if (!(std::abs(sin_a * delta) < 1.0 && cos_a > 0)) {
+          arc(v, na, sin_a, cos_a);
+          at(v, nb.x, nb.y);
+        }
+        break;
+      }
+    }
+    if (ok && r.size() >= 3)
+      out.push_back(std::move(r));
+    else
+      trimmed = false;
+    return;
+  }
   for (size_t j = 0; j < n; ++j) {
     const size_t k = j == 0 ? n - 1 : j - 1;  // edge k enters vertex j, edge j leaves it
     const Normal& a = nrm[k];
@@ -106,6 +218,141 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
   out.push_back(std::move(r));
 }
 
+// Whether the raw curves can be the offset as they are, without the union that cleans them: no
+// two edges meet but consecutive ones at their common end (exact integer tests; a spike, an
+// edge turning back along the one before, counts as a meeting), and the rings nested as a
+// region's are (below). Edges are swept by x; a sweep that would compare far more pairs than
+// there are edges gives up (false) rather than become quadratic.
+bool simple_as_is(const Rings& raw) {
+  struct Edge {
+    geo::coord_t x0, x1, y0, y1;
+    uint32_t ring, i;
+  };
+  size_t n = 0;
+  for (const auto& r : raw) {
+    if (r.size() < 3) return false;
+    n += r.size();
+  }
+  if (raw.size() > 16) return false;
+  std::vector<Edge> edges;
+  edges.reserve(n);
+  for (uint32_t ri = 0; ri < raw.size(); ++ri) {
+    const auto& r = raw[ri];
+    for (uint32_t i = 0; i < r.size(); ++i) {
+      const geo::Point& a = r[i];
+      const geo::Point& b = r[(i + 1) % r.size()];
+      edges.push_back({std::min(a.X, b.X), std::max(a.X, b.X), std::min(a.Y, b.Y), std::max(a.Y, b.Y), ri, i});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.x0 < b.x0; });
+  auto cross = [](const geo::Point& o, const geo::Point& a, const geo::Point& b) {
+    const Wide v = Wide(a.X - o.X) * Wide(b.Y - o.Y) - Wide(a.Y - o.Y) * Wide(b.X - o.X);
+    return v > 0 ? 1 : v < 0 ? -1 : 0;
+  };
+  auto on = [](const geo::Point& a, const geo::Point& b, const geo::Point& q) {  // q on ab, collinear
+    return std::min(a.X, b.X) <= q.X && q.X <= std::max(a.X, b.X) && std::min(a.Y, b.Y) <= q.Y &&
+           q.Y <= std::max(a.Y, b.Y);
+  };
+  auto meet = [&](const geo::Point& a, const geo::Point& b, const geo::Point& c, const geo::Point& d) {
+    const int d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
+    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+    return (d1 == 0 && on(c, d, a)) || (d2 == 0 && on(c, d, b)) || (d3 == 0 && on(a, b, c)) ||
+           (d4 == 0 && on(a, b, d));
+  };
+  std::vector<uint32_t> active;
+  size_t budget = 16 * n + 1024;
+  for (uint32_t k = 0; k < edges.size(); ++k) {
+    const Edge& e = edges[k];
+    const auto& re = raw[e.ring];
+    const geo::Point& a = re[e.i];
+    const geo::Point& b = re[(e.i + 1) % re.size()];
+    for (size_t j = 0; j < active.size();) {
+      const Edge& f = edges[active[j]];
+      if (f.x1 < e.x0) {  // ended left of this one: out of the sweep
+        active[j] = active.back();
+        active.pop_back();
+        continue;
+      }
+      ++j;
+      if (f.y1 < e.y0 || e.y1 < f.y0) continue;
+      if (budget-- == 0) return false;
+      const auto& rf = raw[f.ring];
+      const geo::Point& c = rf[f.i];
+      const geo::Point& d = rf[(f.i + 1) % rf.size()];
+      if (f.ring == e.ring) {
+        const uint32_t m = static_cast<uint32_t>(re.size());
+        if ((f.i + 1) % m == e.i || (e.i + 1) % m == f.i) {
+          // Consecutive: they share an end; they meet elsewhere only if one turns back along the other.
+          const geo::Point& shared = (f.i + 1) % m == e.i ? a : c;
+          const geo::Point& p = (f.i + 1) % m == e.i ? c : a;  // the other end of the first
+          const geo::Point& q = (f.i + 1) % m == e.i ? b : d;  // the other end of the second
+          if (cross(shared, p, q) == 0 &&
+              Wide(p.X - shared.X) * Wide(q.X - shared.X) + Wide(p.Y - shared.Y) * Wide(q.Y - shared.Y) > 0)
+            return false;
+          continue;
+        }
+      }
+      if (meet(a, b, c, d)) return false;
+    }
+    active.push_back(k);
+  }
+  // No two rings cross: each is wholly inside or outside each other one, and the union keeps them
+  // all as they are when every outer (counter-clockwise) is inside no other ring, or inside as
+  // many holes as outers, and every hole inside one outer more than holes: one point of each
+  // ring tells (exact winding numbers).
+  if (raw.size() > 1) {
+    auto winding = [&](const geo::Point& q, const geo::Ring& r) {
+      int w = 0;
+      for (size_t i = 0; i < r.size(); ++i) {
+        const geo::Point& a = r[i];
+        const geo::Point& b = r[(i + 1) % r.size()];
+        if (a.Y <= q.Y) {
+          if (b.Y > q.Y && cross(a, b, q) > 0) ++w;
+        } else if (b.Y <= q.Y && cross(a, b, q) < 0) {
+          --w;
+        }
+      }
+      return w;
+    };
+    for (size_t i = 0; i < raw.size(); ++i) {
+      int w = 0;
+      for (size_t j = 0; j < raw.size(); ++j)
+        if (j != i) w += winding(raw[i][0], raw[j]);
+      if (w != (ClipperLib::Area(raw[i]) > 0 ? 0 : 1)) return false;
+    }
+  } else if (ClipperLib::Area(raw[0]) <= 0) {
+    return false;
+  }
+  return true;
+}
+
+// The raw rings as the union gives them when they are simple: consecutive duplicates and points
+// in line with their neighbours dropped (simple_as_is() then checks what is left).
+Rings cleaned(Rings raw) {
+  for (auto& r : raw) {
+    geo::Ring out;
+    out.reserve(r.size());
+    const size_t n = r.size();
+    for (size_t i = 0; i < n; ++i) {
+      const geo::Point& prev = out.empty() ? r[(i + n - 1) % n] : out.back();
+      const geo::Point& cur = r[i];
+      const geo::Point& next = r[(i + 1) % n];
+      if (cur == prev) continue;
+      const Wide c = Wide(cur.X - prev.X) * (next.Y - cur.Y) - Wide(cur.Y - prev.Y) * (next.X - cur.X);
+      if (c == 0) continue;
+      out.push_back(cur);
+    }
+    auto in_line = [](const geo::Point& p0, const geo::Point& p1, const geo::Point& p2) {
+      return p1 == p0 || Wide(p1.X - p0.X) * (p2.Y - p1.Y) - Wide(p1.Y - p0.Y) * (p2.X - p1.X) == 0;
+    };
+    while (out.size() >= 3 && in_line(out[out.size() - 2], out.back(), out.front())) out.pop_back();
+    while (out.size() >= 3 && in_line(out.back(), out.front(), out[1])) out.erase(out.begin());
+    r = std::move(out);
+  }
+  std::erase_if(raw, [](const geo::Ring& r) { return r.size() < 3; });
+  return raw;
+}
+
 Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
   Rings out;
   if (region.empty()) return out;
@@ -130,16 +377,33 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
     double steps = M_PI / std::acos(1 - tol / ad);  // per full turn
     steps = std::min(steps, ad * M_PI);
     const double steps_per_rad = steps / (2 * M_PI);
-    for (const auto& r : region) {
-      if (!flip) {
-        raw_offset(r, delta, steps_per_rad, raw);
-      } else {
-        geo::Ring rev(r.rbegin(), r.rend());
-        raw_offset(rev, delta, steps_per_rad, raw);
+    // Most offsets of real outlines, trimmed where moved edges overlap, are simple curves: they
+    // are the offset, no union needed. Anything else (a trim given up, a crossing, a hole, rings
+    // inside others) is built again with detours for the union, as Clipper's offset does.
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool trim = pass == 0;
+      bool trimmed = true;
+      raw.clear();
+      for (const auto& r : region) {
+        if (!flip) {
+          raw_offset(r, delta, steps_per_rad, raw, trim, trimmed);
+        } else {
+          geo::Ring rev(r.rbegin(), r.rend());
+          raw_offset(rev, delta, steps_per_rad, raw, trim, trimmed);
+        }
+        if (!trimmed) break;
+      }
+      if (trim && trimmed && !raw.empty()) {
+        Rings simple = cleaned(raw);
+        if (simple.size() == raw.size() && simple_as_is(simple)) return simple;
       }
     }
   }
   if (raw.empty()) return out;
+  if (ad < 1.0) {
+    Rings simple = cleaned(raw);
+    if (simple.size() == raw.size() && simple_as_is(simple)) return simple;
+  }
   Clipper c;
   c.AddPaths(raw, ClipperLib::ptSubject, true);
   if (delta > 0) {

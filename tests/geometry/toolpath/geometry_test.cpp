@@ -272,6 +272,74 @@ TEST_CASE("clip: offsets agree with Clipper's on curved, thin and holed shapes")
   CHECK(compared == 400);
 }
 
+TEST_CASE("clip: offsets agree with Clipper's on polygons with corners: stars, combs, frames, random ones") {
+  // offset() gives most curves back as built (trimmed where moved edges cross, no union): sharp
+  // and right-angled corners, short edges between long ones, teeth narrower than the offset,
+  // holes that grow into their outer, random self-touching polygons united first.
+  uint32_t seed = 777;
+  auto rnd = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) / double(1 << 24);
+  };
+  auto pt = [](double x, double y) { return geo::Point(geo::to_units(x), geo::to_units(y)); };
+  std::vector<geo::Rings> shapes;
+  for (int k = 0; k < 12; ++k) {  // stars: 5..16 points, sharp to blunt
+    const int m = 5 + k;
+    const double r0 = 2 + 6 * rnd(), r1 = r0 * (0.2 + 0.6 * rnd());
+    geo::Ring star;
+    for (int i = 0; i < 2 * m; ++i) {
+      const double t = std::numbers::pi * i / m, rr = i % 2 ? r1 : r0;
+      star.push_back(pt(rr * std::cos(t), rr * std::sin(t)));
+    }
+    shapes.push_back({star});
+  }
+  for (int k = 0; k < 6; ++k) {  // combs: teeth 0.3..2 mm wide, gaps as narrow
+    const double w = 0.3 + 1.7 * rnd(), g = 0.2 + 1.5 * rnd();
+    geo::Ring comb{pt(0, 0)};
+    double x = 0;
+    for (int i = 0; i < 8; ++i) {
+      comb.push_back(pt(x, 10));
+      comb.push_back(pt(x + w, 10));
+      comb.push_back(pt(x + w, 2));
+      comb.push_back(pt(x + w + g, 2));
+      x += w + g;
+    }
+    comb.push_back(pt(x, 10));
+    comb.push_back(pt(x + w, 10));
+    comb.push_back(pt(x + w, 0));
+    shapes.push_back({comb});
+  }
+  for (int k = 0; k < 6; ++k) {  // square frames 0.3..3 mm thick, a short edge cut at one corner
+    const double t = 0.3 + 2.7 * rnd(), c = 0.001 + 0.05 * rnd();
+    geo::Ring outer{pt(0, 0), pt(20, 0), pt(20, 20 - c), pt(20 - c, 20), pt(0, 20)};
+    geo::Ring hole{pt(t, t), pt(t, 20 - t), pt(20 - t, 20 - t), pt(20 - t, t)};
+    shapes.push_back({outer, hole});
+  }
+  for (int k = 0; k < 16; ++k) {  // random polygons, united (self-crossings become rings)
+    geo::Ring r;
+    const int m = 5 + static_cast<int>(20 * rnd());
+    for (int i = 0; i < m; ++i) r.push_back(pt(20 * rnd(), 20 * rnd()));
+    shapes.push_back(toolpath::union_of(geo::Rings{r}));
+  }
+  int compared = 0;
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    for (double mm : {0.02, 0.2, 0.45, 1.0, 2.5}) {
+      for (double d : {mm, -mm}) {
+        const geo::Rings ours = toolpath::offset(shapes[k], d);
+        const geo::Rings theirs = clipper_offset(shapes[k], d, 5000);
+        geo::Rings diff = toolpath::union_of(toolpath::difference(ours, theirs), toolpath::difference(theirs, ours));
+        const geo::Rings opened = clipper_offset(clipper_offset(diff, -0.02, 5000), 0.02, 5000);
+        INFO("shape " << k << " offset " << d << " mm: " << area_mm2(ours) << " mm² against " << area_mm2(theirs));
+        CHECK(area_mm2(opened) < 1e-6);
+        CHECK(std::abs(area_mm2(ours) - area_mm2(theirs)) <= 0.002 * std::max(1.0, area_mm2(theirs)));
+        for (const auto& r : ours) CHECK(r.size() >= 3);
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared == 400);
+}
+
 TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
   // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
   uint32_t seed = 777;
