@@ -24,6 +24,37 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
   return out;
 }
 
+// `p` less each vertex that ends an edge shorter than 10 µm and lies within 1 µm of the chord
+// between its neighbours, between the chord's ends (no spike's tip goes), never two in a row (so
+// each is within 1 µm of the edge that replaces it, and the ring moves by less than 1 µm).
+geo::Ring without_short_edges(const geo::Ring& p) {
+  constexpr double kShort = 10000, kNear = 1000;  // nm
+  auto len2 = [](const geo::Point& a, const geo::Point& b) {
+    const double dx = double(b.X - a.X), dy = double(b.Y - a.Y);
+    return dx * dx + dy * dy;
+  };
+  geo::Ring q;
+  q.reserve(p.size());
+  q.push_back(p[0]);
+  bool dropped = false;
+  for (size_t j = 1; j + 1 < p.size(); ++j) {
+    const geo::Point &a = q.back(), &v = p[j], &b = p[j + 1];
+    if (!dropped && (len2(a, v) < kShort * kShort || len2(v, b) < kShort * kShort)) {
+      const double dx = double(b.X - a.X), dy = double(b.Y - a.Y), l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? (double(v.X - a.X) * dx + double(v.Y - a.Y) * dy) / l2 : -1;
+      const double c = double(v.X - a.X) * dy - double(v.Y - a.Y) * dx;
+      if (t > 0 && t < 1 && c * c < kNear * kNear * l2) {
+        dropped = true;
+        continue;
+      }
+    }
+    dropped = false;
+    q.push_back(v);
+  }
+  q.push_back(p.back());
+  return q;
+}
+
 // The raw offset curve of one closed ring by `delta` units (> 0: to the right of travel, out of
 // a counter-clockwise outer), for a positive-winding union to clean: each edge moved along its
 // normal, round joins where the offset opens (arcs to `steps_per_rad`), and where it closes
@@ -40,6 +71,13 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
   for (const auto& q : ring)
     if (p.empty() || q != p.back()) p.push_back(q);
   while (p.size() > 1 && p.front() == p.back()) p.pop_back();
+  // For the trimmed curve, edges of a few µm go (without_short_edges): outlines sliced from meshes
+  // pair most of their vertices a few µm apart, and such an edge next to a round join cannot be
+  // trimmed. The curve with detours keeps every vertex (a sliver of no area must stay one).
+  if (trim && p.size() > 3) {
+    geo::Ring q = without_short_edges(p);
+    if (q.size() >= 3) p.swap(q);
+  }
   const size_t n = p.size();
   if (n < 3) return;
   struct Normal {
@@ -79,7 +117,7 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
   // overlap) is dropped and its neighbours are crossed instead, as the union would leave them.
   // Edges stack up as they come; a consumed edge is the top one, whose only point is its start
   // crossing. It gives up (the detours below then, for the union) where a consumed edge starts
-  // with a round join or the lines nearly turn back (more than 154°).
+  // with a round join or the lines nearly turn back (more than 177°).
   if (trim) {
     struct Entry {
       size_t edge;
@@ -110,7 +148,7 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
         const double sin_a = std::clamp(na.x * nb.y - nb.x * na.y, -1.0, 1.0);
         const double cos_a = na.x * nb.x + na.y * nb.y;
         if (sin_a * delta < 0 && !(std::abs(sin_a * delta) < 1.0 && cos_a > 0)) {  // overlap: cross
-          if (cos_a < -0.9) {  // nearly back: the crossing is far and ill-conditioned
+          if (cos_a < -0.999) {  // nearly back: the crossing is far and ill-conditioned
             ok = false;
             break;
           }
