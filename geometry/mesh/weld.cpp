@@ -145,89 +145,104 @@ Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& 
 
 Result<Mesh> weld_indexed(const std::vector<float>& vertices, const std::vector<uint32_t>& triangles,
                           const std::string& where, Report& report) {
-  const size_t nv = vertices.size() / 3, n = triangles.size() / 3;
+  std::vector<std::array<uint32_t, 3>> tri(triangles.size() / 3);
+  for (size_t t = 0; t < tri.size(); ++t) tri[t] = {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+  return weld_indexed(vertices, std::move(tri), where, report);
+}
+
+Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report) {
+  const size_t nv = vertices.size() / 3, n = triangles.size();
   bool finite = true;
   for (float f : vertices) finite = finite && std::isfinite(f);
   if (!finite) {  // weld_corners says which triangle, if a triangle uses the vertex
     std::vector<float> corners;
     corners.reserve(9 * n);
-    for (uint32_t v : triangles) corners.insert(corners.end(), &vertices[3 * v], &vertices[3 * v] + 3);
+    for (const auto& t : triangles)
+      for (uint32_t v : t) corners.insert(corners.end(), &vertices[3 * v], &vertices[3 * v] + 3);
     return weld_corners(corners, where, report);
   }
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
-  // canon[v]: the first vertex with v's bits (-0 folded into +0), by a table of vertex ids.
-  std::vector<uint32_t> canon(nv);
-  {
-    const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
-    std::vector<uint32_t> slots(capacity, kEmpty);
-    const uint64_t mask = capacity - 1;
-    auto key = [&](size_t v) {
-      return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
-                                     bits_of(vertices[3 * v + 2])};
-    };
-    for (size_t v = 0; v < nv; ++v) {
-      const auto k = key(v);
-      for (uint64_t i = hash_of(k) & mask;; i = (i + 1) & mask) {
-        if (slots[i] == kEmpty) {
-          slots[i] = canon[v] = static_cast<uint32_t>(v);
-          break;
-        }
-        if (key(slots[i]) == k) {
-          canon[v] = slots[i];
-          break;
+  std::vector<Vec3> ordered;
+  WeldScratch scratch;
+  order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
+  return weld_ordered(std::move(ordered), std::move(triangles), where, report);
+}
+
+void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                        std::vector<Vec3>& out, WeldScratch& scratch) {
+  // One pass over the corners: a vertex seen before has its id; a new one is looked up among the
+  // vertices taken so far (by their bits), as the Welder looks up each corner, but once per vertex.
+  scratch.id.assign(nv, kEmpty);
+  const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
+  scratch.slots.assign(capacity, kEmpty);
+  const uint64_t mask = capacity - 1;
+  uint32_t* id = scratch.id.data();
+  uint32_t* slots = scratch.slots.data();
+  out.clear();
+  out.reserve(nv);
+  for (auto& t : triangles) {
+    for (uint32_t& c : t) {
+      uint32_t& mine = id[c];
+      if (mine == kEmpty) {
+        const std::array<uint32_t, 3> key{bits_of(vertices[3 * size_t{c}]), bits_of(vertices[3 * size_t{c} + 1]),
+                                          bits_of(vertices[3 * size_t{c} + 2])};
+        for (uint64_t i = hash_of(key) & mask;; i = (i + 1) & mask) {
+          const uint32_t o = slots[i];
+          float f[3];
+          std::memcpy(f, key.data(), sizeof f);
+          if (o == kEmpty) {
+            slots[i] = mine = static_cast<uint32_t>(out.size());
+            out.push_back(Vec3{f[0], f[1], f[2]});
+            break;
+          }
+          // Finite, -0 folded: equal values are equal bits.
+          const Vec3& p = out[o];
+          if (p.x == f[0] && p.y == f[1] && p.z == f[2]) {
+            mine = o;
+            break;
+          }
         }
       }
+      c = mine;
     }
   }
-  // Ids in the order corners first use them, as the Welder numbers corners; degenerate triangles
-  // dropped; then, as Welder::finish does, vertices only dropped triangles use are left out.
-  std::vector<uint32_t> id(nv, kEmpty), first;  // first[i]: the vertex of id i
-  first.reserve(nv);
-  std::vector<std::array<uint32_t, 3>> kept;
-  kept.reserve(n);
-  size_t degenerate = 0;
+}
+
+Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report) {
+  const size_t n = triangles.size(), nv = vertices.size();
+  if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
+  size_t kept = 0;
   for (size_t t = 0; t < n; ++t) {
-    uint32_t c[3];
-    for (int k = 0; k < 3; ++k) {
-      uint32_t& slot = id[canon[triangles[3 * t + k]]];
-      if (slot == kEmpty) {
-        slot = static_cast<uint32_t>(first.size());
-        first.push_back(canon[triangles[3 * t + k]]);
-      }
-      c[k] = slot;
-    }
-    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
-      ++degenerate;
-    } else {
-      kept.push_back({c[0], c[1], c[2]});
-    }
+    const auto c = triangles[t];
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+    triangles[kept++] = c;
   }
+  const size_t degenerate = n - kept;
   if (Status st = check_degenerate(degenerate, n, where, report); !st) return st.error();
+  triangles.resize(kept);
+  // As Welder::finish: the vertices only dropped triangles use are left out.
   std::vector<uint32_t> new_id;
   if (degenerate > 0) {
-    new_id.assign(first.size(), kEmpty);
-    for (const auto& t : kept)
+    new_id.assign(nv, kEmpty);
+    for (const auto& t : triangles)
       for (uint32_t i : t) new_id[i] = 0;
     uint32_t next = 0;
     for (auto& i : new_id)
       if (i != kEmpty) i = next++;
-    for (auto& t : kept)
+    for (auto& t : triangles)
       for (auto& i : t) i = new_id[i];
   }
-  Mesh mesh;
-  mesh.vertices.reserve(first.size());
-  for (size_t i = 0; i < first.size(); ++i) {
-    if (!new_id.empty() && new_id[i] == kEmpty) continue;
-    const float* p = &vertices[3 * first[i]];
-    // Through the bits, as the Welder keeps them: -0 is +0.
-    float f[3];
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t b = bits_of(p[k]);
-      std::memcpy(&f[k], &b, sizeof b);
-    }
-    mesh.vertices.push_back(Vec3{f[0], f[1], f[2]});
+  if (degenerate > 0) {
+    size_t next = 0;
+    for (size_t i = 0; i < nv; ++i)
+      if (new_id[i] != kEmpty) vertices[next++] = vertices[i];
+    vertices.resize(next);
   }
-  mesh.triangles = std::move(kept);
+  Mesh mesh;
+  mesh.vertices = std::move(vertices);
+  mesh.triangles = std::move(triangles);
   return mesh;
 }
 

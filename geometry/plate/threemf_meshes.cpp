@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/mesh/weld.h"
+
 namespace tranche::plate::threemf {
 namespace {
 
@@ -247,7 +249,7 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit) {
 
 // `<triangle v1=".." v2=".." v3=".." .../>` elements up to `</triangles>` (properties ignored); an
 // element is begun only before `limit`.
-Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
+Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t limit) {
   for (;;) {
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
@@ -255,7 +257,7 @@ Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
     static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
-      out.insert(out.end(), v, v + 3);
+      out.push_back({v[0], v[1], v[2]});
       continue;
     }
     if (!sc.open("triangle")) return Run::kFailed;
@@ -266,32 +268,37 @@ Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
       return parse(value, v[name[1] - '1']);
     });
     if (!closed || !*closed || got != 7) return Run::kFailed;
-    out.insert(out.end(), v, v + 3);
+    out.push_back({v[0], v[1], v[2]});
   }
 }
 
 // Whether a mesh read to its end is one to take: it has triangles, and their indices are in range
 // (else lib3mf says what is wrong).
-bool complete(const MeshData& m) {
-  if (m.triangles.empty()) return false;
-  const size_t nv = m.vertices.size() / 3;
-  for (uint32_t v : m.triangles)
-    if (v >= nv) return false;
-  return true;
+// (`nv` vertices read.)
+bool complete(const std::vector<std::array<uint32_t, 3>>& triangles, size_t nv) {
+  if (triangles.empty()) return false;
+  uint32_t most = 0;
+  for (const auto& t : triangles) most = std::max({most, t[0], t[1], t[2]});
+  return most < nv;
 }
 
-// A plain `<mesh>` at the cursor, read to its end; nothing for any other form, or a mesh lib3mf
-// would refuse (a coordinate that is not a finite number, a vertex index out of range).
+// A plain `<mesh>` at the cursor, read to its end, in the welder's order; nothing for any other
+// form, or a mesh lib3mf would refuse (a coordinate that is not a finite number, a vertex index
+// out of range).
 std::optional<MeshData> mesh(Scanner& sc) {
   MeshData m;
+  std::vector<float> read;
   if (!sc.start("mesh")) return std::nullopt;
   sc.skip_space();
   constexpr size_t kWhole = std::string_view::npos;  // no limit: the text is all there
-  if (!sc.start("vertices") || vertices(sc, m.vertices, kWhole) != Run::kDone) return std::nullopt;
+  if (!sc.start("vertices") || vertices(sc, read, kWhole) != Run::kDone) return std::nullopt;
   sc.skip_space();
   if (!sc.start("triangles") || triangles(sc, m.triangles, kWhole) != Run::kDone) return std::nullopt;
   sc.skip_space();
-  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
+  if (!sc.eat("</mesh>") || !complete(m.triangles, read.size() / 3)) return std::nullopt;
+  geo::WeldScratch scratch;
+  geo::order_by_first_use(read.data(), read.size() / 3, m.triangles, m.vertices, scratch);
+  m.ordered = true;
   return m;
 }
 
@@ -488,20 +495,26 @@ bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Run (*run)(Scanner
   }
 }
 
+// Memory kept from mesh to mesh (grown once) by the streamed pass.
+struct Scratch {
+  std::vector<float> vertices;  // as read
+  geo::WeldScratch weld;
+};
+
 // mesh() on a streamed text, `at` moved past it; nothing when it does not read. The vertices are
-// read into `scratch` (kept from mesh to mesh, its memory grown once), then copied to a vector of
-// their size; the triangles into room for as many as a closed mesh has (twice the vertices).
-std::optional<MeshData> streamed_mesh(Window& w, size_t& at, std::vector<float>& scratch) {
+// read into `scratch` and put in the welder's order into a vector of their size; the triangles
+// into room for as many as a closed mesh has (twice the vertices).
+std::optional<MeshData> streamed_mesh(Window& w, size_t& at, Scratch& scratch) {
   MeshData m;
   Scanner sc(w.text(), at);
   if (!sc.start("mesh")) return std::nullopt;
   sc.skip_space();
   if (!sc.start("vertices")) return std::nullopt;
   at = sc.pos();
-  scratch.clear();
-  if (!streamed_run(w, at, scratch, vertices) || !w.look(at)) return std::nullopt;
-  m.vertices.assign(scratch.begin(), scratch.end());
-  m.triangles.reserve(2 * m.vertices.size() + 3);
+  scratch.vertices.clear();
+  if (!streamed_run(w, at, scratch.vertices, vertices) || !w.look(at)) return std::nullopt;
+  const size_t nv = scratch.vertices.size() / 3;
+  m.triangles.reserve(2 * nv + 1);
   sc = Scanner(w.text(), at);
   sc.skip_space();
   if (!sc.start("triangles")) return std::nullopt;
@@ -509,8 +522,10 @@ std::optional<MeshData> streamed_mesh(Window& w, size_t& at, std::vector<float>&
   if (!streamed_run(w, at, m.triangles, triangles) || !w.look(at)) return std::nullopt;
   sc = Scanner(w.text(), at);
   sc.skip_space();
-  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
+  if (!sc.eat("</mesh>") || !complete(m.triangles, nv)) return std::nullopt;
   at = sc.pos();
+  geo::order_by_first_use(scratch.vertices.data(), nv, m.triangles, m.vertices, scratch.weld);
+  m.ordered = true;
   return m;
 }
 
@@ -523,7 +538,7 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
   // whole text, then decides, so that a result from here is always the one it gives.
   SplitModel out;
   Window w(pull);
-  std::vector<float> scratch;
+  Scratch scratch;
   size_t at = 0;  // the text before `at` is in out.model, or was a mesh replaced
   if (!w.refill(at)) return std::nullopt;
   for (;;) {

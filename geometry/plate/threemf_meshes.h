@@ -16,6 +16,7 @@
 // at a time; the others by it).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -24,11 +25,18 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/mesh/mesh.h"
+
 namespace tranche::plate::threemf {
 
+// A mesh the scanner read is in the welder's order (geo::order_by_first_use, while the mesh is
+// still in the cache): exactly equal vertices merged, the vertices in the order the triangles
+// first use them, unused ones left out, every triangle kept (degenerate ones too: PrusaSlicer's
+// volumes count them). What the 3MF reads is unchanged; the welding after is only its last step.
 struct MeshData {
-  std::vector<float> vertices;      // x, y, z of each vertex, in the model's unit
-  std::vector<uint32_t> triangles;  // v1, v2, v3 of each triangle (not yet checked against the vertices)
+  std::vector<geo::Vec3> vertices;                 // in the model's unit (floats, as the file's are read)
+  std::vector<std::array<uint32_t, 3>> triangles;  // vertex indices of each triangle, in range
+  bool ordered = false;                            // in the welder's order (the scanner's meshes)
 };
 
 struct SplitModel {
