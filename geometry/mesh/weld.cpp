@@ -171,40 +171,57 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
 
 void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
                         std::vector<Vec3>& out, WeldScratch& scratch) {
-  // One pass over the corners: a vertex seen before has its id; a new one is looked up among the
-  // vertices taken so far (by their bits), as the Welder looks up each corner, but once per vertex.
-  scratch.id.assign(nv, kEmpty);
+  // Two passes: each vertex looked up among those before it (by its bits), in order, so that the
+  // table's slot can be fetched ahead; then the corners, numbering each vertex's value when first
+  // used, as the Welder numbers corners.
+  const auto key = [&](size_t v) {
+    return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
+                                   bits_of(vertices[3 * v + 2])};
+  };
   const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
-  scratch.slots.assign(capacity, kEmpty);
+  const int shift = 64 - std::countr_zero(capacity);  // the slot: the hash's high bits
   const uint64_t mask = capacity - 1;
+  constexpr uint64_t kFree = UINT64_MAX;
+  scratch.hashes.resize(nv);
+  scratch.first.resize(nv);
+  scratch.slots.assign(capacity, kFree);
+  uint64_t* hashes = scratch.hashes.data();
+  uint32_t* first = scratch.first.data();
+  uint64_t* slots = scratch.slots.data();
+  for (size_t v = 0; v < nv; ++v) hashes[v] = hash_of(key(v)) * 0x9E3779B97F4A7C15ull;
+  constexpr size_t kAhead = 16;
+  for (size_t v = 0; v < nv; ++v) {
+    if (v + kAhead < nv) __builtin_prefetch(&slots[hashes[v + kAhead] >> shift]);
+    const uint64_t h = hashes[v];
+    const uint64_t fingerprint = h & 0xFFFFFFFF00000000ull;  // the slot's own bits are the top ones
+    for (uint64_t i = h >> shift;; i = (i + 1) & mask) {
+      const uint64_t s = slots[i];
+      if (s == kFree) {
+        slots[i] = fingerprint | v;
+        first[v] = static_cast<uint32_t>(v);
+        break;
+      }
+      if ((s & 0xFFFFFFFF00000000ull) == fingerprint && key(static_cast<uint32_t>(s)) == key(v)) {
+        first[v] = static_cast<uint32_t>(s);
+        break;
+      }
+    }
+  }
+  scratch.id.assign(nv, kEmpty);
   uint32_t* id = scratch.id.data();
-  uint32_t* slots = scratch.slots.data();
   out.clear();
   out.reserve(nv);
   for (auto& t : triangles) {
     for (uint32_t& c : t) {
-      uint32_t& mine = id[c];
-      if (mine == kEmpty) {
-        const std::array<uint32_t, 3> key{bits_of(vertices[3 * size_t{c}]), bits_of(vertices[3 * size_t{c} + 1]),
-                                          bits_of(vertices[3 * size_t{c} + 2])};
-        for (uint64_t i = hash_of(key) & mask;; i = (i + 1) & mask) {
-          const uint32_t o = slots[i];
-          float f[3];
-          std::memcpy(f, key.data(), sizeof f);
-          if (o == kEmpty) {
-            slots[i] = mine = static_cast<uint32_t>(out.size());
-            out.push_back(Vec3{f[0], f[1], f[2]});
-            break;
-          }
-          // Finite, -0 folded: equal values are equal bits.
-          const Vec3& p = out[o];
-          if (p.x == f[0] && p.y == f[1] && p.z == f[2]) {
-            mine = o;
-            break;
-          }
-        }
+      const uint32_t f = first[c];
+      if (id[f] == kEmpty) {
+        id[f] = static_cast<uint32_t>(out.size());
+        const auto k = key(f);
+        float p[3];
+        std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
+        out.push_back(Vec3{p[0], p[1], p[2]});
       }
-      c = mine;
+      c = id[f];
     }
   }
 }

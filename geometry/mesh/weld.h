@@ -69,8 +69,10 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
 // drops them, as the welder does, after numbering their corners). `scratch` is working memory a
 // loader may keep from mesh to mesh.
 struct WeldScratch {
-  std::vector<uint32_t> id;     // by input vertex
-  std::vector<uint32_t> slots;  // hash table of output vertex ids
+  std::vector<uint64_t> hashes;  // by input vertex
+  std::vector<uint32_t> first;   // by input vertex: the first vertex of its value
+  std::vector<uint32_t> id;      // by input vertex: its id in `out`
+  std::vector<uint64_t> slots;   // hash table of input vertices: fingerprint << 32 | vertex
 };
 void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
                         std::vector<Vec3>& out, WeldScratch& scratch);
