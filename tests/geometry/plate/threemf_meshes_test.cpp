@@ -231,6 +231,12 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
     texts.push_back(fmt::format("{:.{}f}", d, i % 12));  // fixed, 0 to 11 decimals
     texts.push_back(fmt::format("{:.{}g}", d, 1 + i % 17));
     texts.push_back(fmt::format("{}", static_cast<float>(d)));  // shortest round trip
+    // Within a few units of a double of a point halfway between two floats (15 digits), where a
+    // double rounded twice could round the wrong way.
+    const float f = static_cast<float>(d);
+    const double half = (static_cast<double>(f) + std::nextafter(f, 1e9f)) / 2;
+    texts.push_back(fmt::format("{:.{}g}", half, 13 + i % 3));
+    texts.push_back(fmt::format("{:.{}f}", half, 9 + i % 3));
   }
   const std::vector<float> got = scanned_x(texts);
   REQUIRE(got.size() == texts.size());
