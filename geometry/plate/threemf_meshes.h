@@ -42,6 +42,10 @@ struct MeshData {
 struct SplitModel {
   std::string model;                    // the model part, the meshes read here replaced by placeholders
   std::map<uint32_t, MeshData> meshes;  // by the id of their object
+  // Not empty: a mesh holds a value that neither the scanner nor lib3mf would read as a number
+  // (lib3mf 1.8 reads "abc" or "" as 0): where and what, `line 12, object 1: vertex 3 has the
+  // coordinate x="abc", which is not a number`. The load fails with it.
+  std::string bad;
 };
 
 // Reads the plain meshes of the model part `xml`; `meshes` is empty when there was none.
@@ -54,7 +58,8 @@ using Pull = std::function<std::optional<size_t>(char* out, size_t n)>;
 // split_meshes on a model part read in pieces from `pull`, never whole in memory (a window of about
 // 1 MiB): the result split_meshes gives on the whole text, or nothing where the whole text is
 // needed to say it (an object whose mesh would be left to lib3mf, an id given twice, an element
-// longer than 64 KiB, a text that cannot be read); the caller then reads the part whole.
+// longer than 64 KiB, a value that is no number, a text that cannot be read); the caller then
+// reads the part whole.
 std::optional<SplitModel> split_meshes_streamed(const Pull& pull);
 
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c

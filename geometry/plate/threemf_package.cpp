@@ -478,6 +478,11 @@ Result<std::string> without_meshes(std::string_view bytes, const std::string& ro
     auto xml = zip->read_bytes(*model, kPartLimit);
     if (!xml) return xml.error();
     split = split_meshes(xml->view());
+    if (!split.bad.empty()) {
+      Error e{file + ", " + model->name, split.bad + "; the file is damaged — export it again"};
+      split = SplitModel{};
+      return e;
+    }
   }
   if (split.meshes.empty()) return std::string();
   std::vector<std::pair<std::string, std::string>> parts;

@@ -191,6 +191,79 @@ TEST_CASE("3mf meshes: duplicate and -0 vertices, unused ones and degenerate tri
   }
 }
 
+TEST_CASE("3mf meshes: forms the scanner leaves to lib3mf load as the plain form does, or fail naming the file") {
+  // A vertex or a triangle not closed by itself: lib3mf reads those meshes. A character reference
+  // in a number (which lib3mf 1.8 does not read) or a number neither reads: an error naming the
+  // file, never a number read wrong.
+  const std::string plain = box_mesh(10, 10, 10);
+  auto load = [](const std::string& mesh) {
+    Report report;
+    return tranche::plate::parse_3mf(
+        package(model("<object id=\"1\" name=\"box\" type=\"model\">" + mesh + "</object>", "<item objectid=\"1\"/>")),
+        "odd.3mf", report);
+  };
+  const auto want = load(plain);
+  REQUIRE(want.ok());
+  std::string open_vertex = plain;
+  open_vertex.replace(open_vertex.find("z=\"0\"/>"), 7, "z=\"0\"></vertex>");
+  std::string reference = plain;
+  reference.replace(reference.find("x=\"10\""), 6, "x=\"&#49;0\"");  // "10"
+  std::string open_triangle = plain;
+  open_triangle.replace(open_triangle.find("v3=\"1\"/>"), 8, "v3=\"1\" ></triangle>");
+  for (const std::string& odd : {open_vertex, open_triangle}) {
+    CAPTURE(odd);
+    CHECK(threemf::split_meshes(model("<object id=\"1\">" + odd + "</object>", "")).meshes.empty());
+    const auto got = load(odd);
+    REQUIRE(got.ok());
+    REQUIRE(got->size() == 1);
+    CHECK((*got)[0].mesh.triangles == (*want)[0].mesh.triangles);
+    REQUIRE((*got)[0].mesh.vertices.size() == (*want)[0].mesh.vertices.size());
+    for (size_t i = 0; i < (*got)[0].mesh.vertices.size(); ++i) {
+      CHECK((*got)[0].mesh.vertices[i].x == (*want)[0].mesh.vertices[i].x);
+      CHECK((*got)[0].mesh.vertices[i].y == (*want)[0].mesh.vertices[i].y);
+      CHECK((*got)[0].mesh.vertices[i].z == (*want)[0].mesh.vertices[i].z);
+    }
+  }
+  // lib3mf 1.8 reads all of these as a number (0, or the number they begin with): refused with
+  // where they are (the vertex x="10" is on line 2, the first triangle's v2 on line 3).
+  for (const std::string bad : {"abc", "", "1.2.3", "--1", "1e", "0x10", "1,5", "nan", "- 1"}) {
+    CAPTURE(bad);
+    std::string m = plain;
+    m.replace(m.find("x=\"10\""), 6, fmt::format("\n x=\"{}\"", bad));
+    auto got = load(m);
+    REQUIRE_FALSE(got.ok());
+    std::string e = got.error().to_string();
+    CHECK(e.find("odd.3mf, 3D/3dmodel.model: line 2, object 1: vertex 1 has the coordinate x=\"" + bad +
+                 "\", which is not a number") != std::string::npos);
+    CHECK(e.find("export it again") != std::string::npos);
+    m = plain;
+    m.replace(m.find("v2=\"2\""), 6, fmt::format("v2=\"{}\"", bad));
+    m.replace(m.find("<triangles>"), 0, "\n\n");
+    got = load(m);
+    REQUIRE_FALSE(got.ok());
+    e = got.error().to_string();
+    CHECK(e.find("line 3, object 1: triangle 0 has the vertex index v2=\"" + bad + "\", which is not a number") !=
+          std::string::npos);
+  }
+  // Numbers the specification writes, which the scanner leaves to lib3mf: read.
+  for (const std::string fine : {"+10", " 10 ", "1e1", "10.0", ".5e2"}) {
+    CAPTURE(fine);
+    std::string m = plain;
+    m.replace(m.find("x=\"10\""), 6, fmt::format("x=\"{}\"", fine));
+    CHECK(load(m).ok());
+  }
+  // In a comment, which lib3mf skips, nothing is refused.
+  std::string commented = plain;
+  commented.replace(commented.find("x=\"10\""), 6, "x=\"abc\"");
+  commented = "<!-- " + commented + " -->" + plain;
+  CHECK(load(commented).ok());
+  CHECK(threemf::split_meshes(model("<object id=\"1\">" + reference + "</object>", "")).meshes.empty());
+  const auto got = load(reference);
+  REQUIRE_FALSE(got.ok());
+  CHECK(got.error().to_string().find("odd.3mf") != std::string::npos);
+  CHECK(got.error().to_string().find("cannot be read") != std::string::npos);
+}
+
 namespace {
 
 // The x coordinates the scanner reads from `texts`, each the x of a vertex of one mesh (its own y,
