@@ -515,9 +515,16 @@ class Window {
   static constexpr size_t kLook = size_t{64} << 10;
   static constexpr size_t kFill = size_t{1} << 20;  // read at once: the window is kFill + kLook
 
-  explicit Window(const Pull& pull) : pull_(pull), buf_(new char[kFill + kLook]) {}
+  explicit Window(const Pull& pull) : pull_(&pull), buf_(new char[kFill + kLook]), text_(buf_.get()) {}
+  // The text read where `chunks` puts it.
+  explicit Window(Chunks& chunks) : chunks_(&chunks) {}
+  ~Window() {
+    if (chunks_ && chunk_) chunks_->give_back(chunk_);
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
 
-  std::string_view text() const { return {buf_.get(), size_}; }
+  std::string_view text() const { return {text_, size_}; }
   size_t size() const { return size_; }
   bool ended() const { return ended_; }
   // Where an element may begin: kLook before the window's end, unless the text ends in it.
@@ -528,11 +535,12 @@ class Window {
   bool refill(size_t& at) {
     if (ended_) return true;
     ++refills_;
+    if (chunks_) return next_chunk(at);
     std::memmove(buf_.get(), buf_.get() + at, size_ - at);
     size_ -= at;
     at = 0;
     while (size_ < kFill + kLook && !ended_) {
-      const std::optional<size_t> got = pull_(buf_.get() + size_, kFill + kLook - size_);
+      const std::optional<size_t> got = (*pull_)(buf_.get() + size_, kFill + kLook - size_);
       if (!got) return false;
       ended_ = *got == 0;
       size_ += *got;
@@ -545,8 +553,39 @@ class Window {
   size_t refills() const { return refills_; }
 
  private:
-  const Pull& pull_;
-  std::unique_ptr<char[]> buf_;
+  static_assert(Chunks::kRoom >= kLook);  // a refill keeps at most kLook bytes
+
+  // refill() from chunks: the text from `at` on (at most kLook bytes, as every caller keeps)
+  // copied into the room before the next chunk, which the window then is.
+  bool next_chunk(size_t& at) {
+    do {  // a short chunk is joined to the next
+      const size_t tail = size_ - at;
+      if (tail > Chunks::kRoom) return false;
+      const std::optional<Chunks::Chunk> c = chunks_->next();
+      if (!c) return false;
+      if (c->size == 0) {
+        ended_ = true;
+        text_ += at;
+        size_ = tail;
+        at = 0;
+        return true;
+      }
+      char* to = c->data + Chunks::kRoom - tail;
+      if (tail) std::memcpy(to, text_ + at, tail);
+      if (chunk_) chunks_->give_back(chunk_);
+      chunk_ = c->data;
+      text_ = to;
+      size_ = tail + c->size;
+      at = 0;
+    } while (size_ <= kLook);
+    return true;
+  }
+
+  const Pull* pull_ = nullptr;
+  Chunks* chunks_ = nullptr;
+  std::unique_ptr<char[]> buf_;  // the pull's window
+  char* chunk_ = nullptr;        // the chunk the text is in
+  const char* text_ = nullptr;
   size_t size_ = 0;
   size_t refills_ = 0;
   bool ended_ = false;
@@ -602,13 +641,14 @@ std::optional<MeshData> streamed_mesh(Window& w, size_t& at, Scratch& scratch) {
 
 }  // namespace
 
-std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
+namespace {
+
+std::optional<SplitModel> split_streamed(Window& w) {
   // split_meshes' pass, object after object, but on a window of the text. An element is read only
   // where it lies whole in the window (kLook past its start), and whatever this pass would leave
   // in place (a mesh that does not read, an object id taken twice) gives up: split_meshes, on the
   // whole text, then decides, so that a result from here is always the one it gives.
   SplitModel out;
-  Window w(pull);
   Scratch scratch;
   size_t at = 0;  // the text before `at` is in out.model, or was a mesh replaced
   if (!w.refill(at)) return std::nullopt;
@@ -683,6 +723,18 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
   }
   if (out.meshes.empty()) return SplitModel{};
   return out;
+}
+
+}  // namespace
+
+std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
+  Window w(pull);
+  return split_streamed(w);
+}
+
+std::optional<SplitModel> split_meshes_streamed(Chunks& chunks) {
+  Window w(chunks);
+  return split_streamed(w);
 }
 
 std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c) {

@@ -62,6 +62,25 @@ using Pull = std::function<std::optional<size_t>(char* out, size_t n)>;
 // reads the part whole.
 std::optional<SplitModel> split_meshes_streamed(const Pull& pull);
 
+// A model part another thread reads ahead, in chunks the scanner reads where they are (no copy
+// but of the few bytes of an element cut by a chunk's end, into the room before the next chunk).
+class Chunks {
+ public:
+  static constexpr size_t kRoom = size_t{64} << 10;  // before each chunk's text
+  struct Chunk {
+    char* data = nullptr;  // the text is at data + kRoom
+    size_t size = 0;       // 0: the text has ended
+  };
+  virtual ~Chunks() = default;
+  // The next chunk; nothing when the text cannot be read.
+  virtual std::optional<Chunk> next() = 0;
+  // A chunk next() gave, no longer read.
+  virtual void give_back(char* data) = 0;
+};
+
+// split_meshes_streamed on chunks: the same result, or nothing where it gives nothing.
+std::optional<SplitModel> split_meshes_streamed(Chunks& chunks);
+
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
 // (x, y, z each), if it is one.
 std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c);
