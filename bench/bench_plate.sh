@@ -10,7 +10,9 @@
 # The goal is judged on what `tranche slice` does, a first load in a fresh process: the median of
 # BENCH_RUNS such loads each (STL and 3MF taking turns, as the machine is shared and noisy), wall
 # and CPU time (all threads; the 3MF is inflated on a second thread while its meshes are read,
-# so its wall time gains from a free core). Loads repeated in one process are shown too (best of
+# so its wall time gains from a free core). Both are judged against 1.5 x: the wall time is what a
+# user waits for on a free machine, the CPU time the work the load does, which holds on a loaded
+# one (there the wall time waits for cores). Loads repeated in one process are shown too (best of
 # BENCH_RUNS): there the memory a load frees is reused by the next, which spares the STL files'
 # 100 MB most of their page faults.
 #   bench/bench_plate.sh [BUILD_DIR]        BENCH_RUNS=N (default 5)
@@ -40,8 +42,8 @@ awk -v runs="$runs" -v sw="$(median "${stl_w[@]}")" -v sc="$(median "${stl_c[@]}
   printf "first load in a fresh process (what `tranche slice` does), median of %d\n", runs
   printf "%-34s %9s %8s %7s %8s %9s\n", "input (10 objects)", "load s", "vs STL", "CPU s", "vs STL", "peak MiB"
   printf "%-34s %9.3f %8s %7.3f %8s %9.0f\n", "10 binary STL files", sw, "1.00", sc, "1.00", sm
-  printf "%-34s %9.3f %8.2f %7.3f %8.2f %9.0f   goal within 1.5 x (load s): %s\n", "one 3MF", tw, tw / sw, tc, tc / sc,
-         tm, tw / sw <= 1.5 ? "met" : "MISSED"
+  printf "%-34s %9.3f %8.2f %7.3f %8.2f %9.0f   goal within 1.5 x: load s %s, CPU s %s\n", "one 3MF", tw, tw / sw,
+         tc, tc / sc, tm, tw / sw <= 1.5 ? "met" : "MISSED", tc / sc <= 1.5 ? "met" : "MISSED"
 }'
 echo
 "$bench" write-objects "$tmp/objects" >/dev/null

@@ -145,89 +145,121 @@ Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& 
 
 Result<Mesh> weld_indexed(const std::vector<float>& vertices, const std::vector<uint32_t>& triangles,
                           const std::string& where, Report& report) {
-  const size_t nv = vertices.size() / 3, n = triangles.size() / 3;
+  std::vector<std::array<uint32_t, 3>> tri(triangles.size() / 3);
+  for (size_t t = 0; t < tri.size(); ++t) tri[t] = {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+  return weld_indexed(vertices, std::move(tri), where, report);
+}
+
+Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report) {
+  const size_t nv = vertices.size() / 3, n = triangles.size();
   bool finite = true;
   for (float f : vertices) finite = finite && std::isfinite(f);
   if (!finite) {  // weld_corners says which triangle, if a triangle uses the vertex
     std::vector<float> corners;
     corners.reserve(9 * n);
-    for (uint32_t v : triangles) corners.insert(corners.end(), &vertices[3 * v], &vertices[3 * v] + 3);
+    for (const auto& t : triangles)
+      for (uint32_t v : t) corners.insert(corners.end(), &vertices[3 * v], &vertices[3 * v] + 3);
     return weld_corners(corners, where, report);
   }
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
-  // canon[v]: the first vertex with v's bits (-0 folded into +0), by a table of vertex ids.
-  std::vector<uint32_t> canon(nv);
-  {
-    const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
-    std::vector<uint32_t> slots(capacity, kEmpty);
-    const uint64_t mask = capacity - 1;
-    auto key = [&](size_t v) {
-      return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
-                                     bits_of(vertices[3 * v + 2])};
-    };
-    for (size_t v = 0; v < nv; ++v) {
-      const auto k = key(v);
-      for (uint64_t i = hash_of(k) & mask;; i = (i + 1) & mask) {
-        if (slots[i] == kEmpty) {
-          slots[i] = canon[v] = static_cast<uint32_t>(v);
-          break;
-        }
-        if (key(slots[i]) == k) {
-          canon[v] = slots[i];
-          break;
-        }
+  std::vector<Vec3> ordered;
+  WeldScratch scratch;
+  order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
+  return weld_ordered(std::move(ordered), std::move(triangles), where, report);
+}
+
+void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                        std::vector<Vec3>& out, WeldScratch& scratch) {
+  // Two passes: each vertex looked up among those before it (by its bits), in order, so that the
+  // table's slot can be fetched ahead; then the corners, numbering each vertex's value when first
+  // used, as the Welder numbers corners.
+  const auto key = [&](size_t v) {
+    return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
+                                   bits_of(vertices[3 * v + 2])};
+  };
+  const uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, uint64_t{nv} * 2));
+  const int shift = 64 - std::countr_zero(capacity);  // the slot: the hash's high bits
+  const uint64_t mask = capacity - 1;
+  constexpr uint64_t kFree = UINT64_MAX;
+  scratch.hashes.resize(nv);
+  scratch.first.resize(nv);
+  scratch.slots.assign(capacity, kFree);
+  uint64_t* hashes = scratch.hashes.data();
+  uint32_t* first = scratch.first.data();
+  uint64_t* slots = scratch.slots.data();
+  for (size_t v = 0; v < nv; ++v) hashes[v] = hash_of(key(v)) * 0x9E3779B97F4A7C15ull;
+  constexpr size_t kAhead = 16;
+  for (size_t v = 0; v < nv; ++v) {
+    if (v + kAhead < nv) __builtin_prefetch(&slots[hashes[v + kAhead] >> shift]);
+    const uint64_t h = hashes[v];
+    const uint64_t fingerprint = h & 0xFFFFFFFF00000000ull;  // the slot's own bits are the top ones
+    for (uint64_t i = h >> shift;; i = (i + 1) & mask) {
+      const uint64_t s = slots[i];
+      if (s == kFree) {
+        slots[i] = fingerprint | v;
+        first[v] = static_cast<uint32_t>(v);
+        break;
+      }
+      if ((s & 0xFFFFFFFF00000000ull) == fingerprint && key(static_cast<uint32_t>(s)) == key(v)) {
+        first[v] = static_cast<uint32_t>(s);
+        break;
       }
     }
   }
-  // Ids in the order corners first use them, as the Welder numbers corners; degenerate triangles
-  // dropped; then, as Welder::finish does, vertices only dropped triangles use are left out.
-  std::vector<uint32_t> id(nv, kEmpty), first;  // first[i]: the vertex of id i
-  first.reserve(nv);
-  std::vector<std::array<uint32_t, 3>> kept;
-  kept.reserve(n);
-  size_t degenerate = 0;
+  scratch.id.assign(nv, kEmpty);
+  uint32_t* id = scratch.id.data();
+  out.clear();
+  out.reserve(nv);
+  for (auto& t : triangles) {
+    for (uint32_t& c : t) {
+      const uint32_t f = first[c];
+      if (id[f] == kEmpty) {
+        id[f] = static_cast<uint32_t>(out.size());
+        const auto k = key(f);
+        float p[3];
+        std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
+        out.push_back(Vec3{p[0], p[1], p[2]});
+      }
+      c = id[f];
+    }
+  }
+}
+
+Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report) {
+  const size_t n = triangles.size(), nv = vertices.size();
+  if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
+  size_t kept = 0;
   for (size_t t = 0; t < n; ++t) {
-    uint32_t c[3];
-    for (int k = 0; k < 3; ++k) {
-      uint32_t& slot = id[canon[triangles[3 * t + k]]];
-      if (slot == kEmpty) {
-        slot = static_cast<uint32_t>(first.size());
-        first.push_back(canon[triangles[3 * t + k]]);
-      }
-      c[k] = slot;
-    }
-    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
-      ++degenerate;
-    } else {
-      kept.push_back({c[0], c[1], c[2]});
-    }
+    const auto c = triangles[t];
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+    triangles[kept++] = c;
   }
+  const size_t degenerate = n - kept;
   if (Status st = check_degenerate(degenerate, n, where, report); !st) return st.error();
+  triangles.resize(kept);
+  // As Welder::finish: the vertices only dropped triangles use are left out.
   std::vector<uint32_t> new_id;
   if (degenerate > 0) {
-    new_id.assign(first.size(), kEmpty);
-    for (const auto& t : kept)
+    new_id.assign(nv, kEmpty);
+    for (const auto& t : triangles)
       for (uint32_t i : t) new_id[i] = 0;
     uint32_t next = 0;
     for (auto& i : new_id)
       if (i != kEmpty) i = next++;
-    for (auto& t : kept)
+    for (auto& t : triangles)
       for (auto& i : t) i = new_id[i];
   }
-  Mesh mesh;
-  mesh.vertices.reserve(first.size());
-  for (size_t i = 0; i < first.size(); ++i) {
-    if (!new_id.empty() && new_id[i] == kEmpty) continue;
-    const float* p = &vertices[3 * first[i]];
-    // Through the bits, as the Welder keeps them: -0 is +0.
-    float f[3];
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t b = bits_of(p[k]);
-      std::memcpy(&f[k], &b, sizeof b);
-    }
-    mesh.vertices.push_back(Vec3{f[0], f[1], f[2]});
+  if (degenerate > 0) {
+    size_t next = 0;
+    for (size_t i = 0; i < nv; ++i)
+      if (new_id[i] != kEmpty) vertices[next++] = vertices[i];
+    vertices.resize(next);
   }
-  mesh.triangles = std::move(kept);
+  Mesh mesh;
+  mesh.vertices = std::move(vertices);
+  mesh.triangles = std::move(triangles);
   return mesh;
 }
 

@@ -54,5 +54,33 @@ Result<Mesh> weld_corners(const std::vector<float>& corners, const std::string& 
 // corners, vertex ids included, but only the vertices are hashed, not every corner.
 Result<Mesh> weld_indexed(const std::vector<float>& vertices, const std::vector<uint32_t>& triangles,
                           const std::string& where, Report& report);
+// The same, on triangles as vertex id triples whose storage the result takes over.
+Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report);
+
+// weld_indexed in two steps, so that a loader can take the first while a mesh is still in its
+// cache and the second later, without a copy of the mesh (the 3MF loader: threemf_meshes.h).
+//
+// The first step, order_by_first_use: an indexed mesh of finite vertices (x, y, z each at
+// `vertices`, `nv` of them; `triangles` in range, the caller's check) in the welder's order:
+// exactly equal vertices (-0 folded into +0) merged, the vertices in the order the triangles first
+// use them, those no triangle uses left out. `out` gets the vertices as the welded mesh keeps
+// them (doubles of the floats; -0 is +0), `triangles` their new ids in place; degenerate triangles are kept (the second step
+// drops them, as the welder does, after numbering their corners). `scratch` is working memory a
+// loader may keep from mesh to mesh.
+struct WeldScratch {
+  std::vector<uint64_t> hashes;  // by input vertex
+  std::vector<uint32_t> first;   // by input vertex: the first vertex of its value
+  std::vector<uint32_t> id;      // by input vertex: its id in `out`
+  std::vector<uint64_t> slots;   // hash table of input vertices: fingerprint << 32 | vertex
+};
+void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                        std::vector<Vec3>& out, WeldScratch& scratch);
+
+// The second step, on a mesh order_by_first_use gave: degenerate triangles dropped (a warning,
+// "mesh-degenerate"; all of them: an error), the vertices only they use left out, the storage of
+// both taken over. The result is weld_indexed's on the mesh before the first step.
+Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
+                          const std::string& where, Report& report);
 
 }  // namespace tranche::geo

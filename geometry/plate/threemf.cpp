@@ -105,7 +105,7 @@ double unit_mm(DWORD unit) {
 class Collector {
  public:
   // `meshes`: the meshes the scanner read, by object id (their objects hold placeholders).
-  Collector(const std::string& file, const threemf::Package& pkg, const std::map<uint32_t, threemf::MeshData>& meshes,
+  Collector(const std::string& file, const threemf::Package& pkg, std::map<uint32_t, threemf::MeshData>& meshes,
             Report& report)
       : file_(file), pkg_(pkg), meshes_(meshes), report_(report) {}
 
@@ -143,7 +143,7 @@ class Collector {
 
   // The meshes collected, for one object.
   struct Piece {
-    const threemf::MeshData* data;           // the scanner's mesh, or `own`
+    threemf::MeshData* data;                 // the scanner's mesh, or `own`
     std::unique_ptr<threemf::MeshData> own;  // a mesh lib3mf read
     std::vector<bool> keep;                  // the triangles kept; empty: all
     Eigen::Affine3d t;                       // to object mm
@@ -153,29 +153,30 @@ class Collector {
   // The object's triangles from `pieces`: x, y, z of each vertex (object mm) in `vertices`, three
   // vertex indices per triangle in `triangles` (as the corners would be: mirrored by a mirroring
   // transform).
-  static void gather(const std::vector<Piece>& pieces, std::vector<float>& vertices, std::vector<uint32_t>& triangles) {
+  static void gather(const std::vector<Piece>& pieces, std::vector<float>& vertices,
+                     std::vector<std::array<uint32_t, 3>>& triangles) {
     size_t nv = 0, nt = 0;
     for (const Piece& p : pieces) {
-      nv += p.data->vertices.size() / 3;
-      nt += p.data->triangles.size() / 3;
+      nv += p.data->vertices.size();
+      nt += p.data->triangles.size();
     }
     vertices.reserve(3 * nv);
-    triangles.reserve(3 * nt);
+    triangles.reserve(nt);
     for (const Piece& p : pieces) {
       const bool mirror = p.t.linear().determinant() < 0;
       const uint32_t base = static_cast<uint32_t>(vertices.size() / 3);
-      const uint32_t* tri = p.data->triangles.data();
-      for (size_t i = 0, n = p.data->triangles.size() / 3; i < n; ++i, tri += 3) {
+      for (size_t i = 0, n = p.data->triangles.size(); i < n; ++i) {
         if (!p.keep.empty() && !p.keep[i]) continue;
-        triangles.insert(triangles.end(), {base + tri[0], base + tri[mirror ? 2 : 1], base + tri[mirror ? 1 : 2]});
+        const auto& tri = p.data->triangles[i];
+        triangles.push_back({base + tri[0], base + tri[mirror ? 2 : 1], base + tri[mirror ? 1 : 2]});
       }
       const size_t at = vertices.size();
-      vertices.resize(at + p.data->vertices.size());
+      vertices.resize(at + 3 * p.data->vertices.size());
       float* out = vertices.data() + at;
-      const float* in = p.data->vertices.data();
-      for (size_t i = 0, n = p.data->vertices.size() / 3; i < n; ++i, in += 3, out += 3) {
-        const Eigen::Vector3d q = p.t * Eigen::Vector3d(in[0], in[1], in[2]);
+      for (const geo::Vec3& in : p.data->vertices) {
+        const Eigen::Vector3d q = p.t * Eigen::Vector3d(in.x, in.y, in.z);
         for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(q[k]);
+        out += 3;
       }
     }
   }
@@ -198,12 +199,12 @@ class Collector {
     if (nv == 3 && nt == 1)
       if (auto mark = threemf::placeholder_id(v[0].m_fPosition, v[1].m_fPosition, v[2].m_fPosition))
         if (auto it = meshes_.find(*mark); it != meshes_.end())
-          return add(&it->second, nullptr, kept_triangles(id, it->second.triangles.size() / 3, name), t);
+          return add(&it->second, nullptr, kept_triangles(id, it->second.triangles.size(), name), t);
     auto own = std::make_unique<threemf::MeshData>();
-    own->vertices.reserve(3 * nv);
-    for (const auto& p : v) own->vertices.insert(own->vertices.end(), p.m_fPosition, p.m_fPosition + 3);
-    own->triangles.reserve(3 * nt);
-    for (const auto& p : tri) own->triangles.insert(own->triangles.end(), p.m_nIndices, p.m_nIndices + 3);
+    own->vertices.reserve(nv);
+    for (const auto& p : v) own->vertices.push_back(geo::Vec3{p.m_fPosition[0], p.m_fPosition[1], p.m_fPosition[2]});
+    own->triangles.reserve(nt);
+    for (const auto& p : tri) own->triangles.push_back({p.m_nIndices[0], p.m_nIndices[1], p.m_nIndices[2]});
     std::vector<bool> keep = kept_triangles(id, nt, name);
     for (size_t i = 0; i < nt; ++i) {
       if (!keep.empty() && !keep[i]) continue;
@@ -213,17 +214,17 @@ class Collector {
                                           "out of range); the file is damaged — export it again",
                                           i + 1, tri[i].m_nIndices[k], nv)};
     }
-    const threemf::MeshData* d = own.get();
+    threemf::MeshData* d = own.get();
     return add(d, std::move(own), std::move(keep), t);
   }
 
   // A mesh `d` (whose indices are in range), those of its triangles `keep` keeps, through `t`.
-  Status add(const threemf::MeshData* d, std::unique_ptr<threemf::MeshData> own, std::vector<bool> keep,
+  Status add(threemf::MeshData* d, std::unique_ptr<threemf::MeshData> own, std::vector<bool> keep,
              const Eigen::Affine3d& t) {
-    vertex_count_ += d->vertices.size() / 3;
+    vertex_count_ += d->vertices.size();
     if (vertex_count_ > UINT32_MAX)
       return Error{file_, fmt::format("{} vertices in one object are more than Tranche can load", vertex_count_)};
-    const size_t nt = d->triangles.size() / 3;
+    const size_t nt = d->triangles.size();
     triangle_count_ += keep.empty() ? nt : static_cast<size_t>(std::count(keep.begin(), keep.end(), true));
     pieces_.push_back(Piece{d, std::move(own), std::move(keep), t});
     return ok_status();
@@ -260,7 +261,7 @@ class Collector {
 
   const std::string& file_;
   const threemf::Package& pkg_;
-  const std::map<uint32_t, threemf::MeshData>& meshes_;
+  std::map<uint32_t, threemf::MeshData>& meshes_;
   Report& report_;
   std::vector<Piece> pieces_;
   size_t vertex_count_ = 0, triangle_count_ = 0;
@@ -285,7 +286,7 @@ void forward_warnings(PLib3MFBase* reader, const std::string& file, Report& repo
 // then reports each item's warnings and the first error as reading them one by one would have.
 class Build {
  public:
-  Build(const std::string& file, const threemf::Package& pkg, const std::map<uint32_t, threemf::MeshData>& meshes,
+  Build(const std::string& file, const threemf::Package& pkg, std::map<uint32_t, threemf::MeshData>& meshes,
         double mm)
       : file_(file), pkg_(pkg), meshes_(meshes), to_mm_(Eigen::Scaling(mm)),
         stem_(std::filesystem::path(file).stem().string()) {}
@@ -344,20 +345,29 @@ class Build {
   // Welds the objects' meshes; the warnings go to `report`. `stop`: the error reading the items
   // ended with, reported after the items before it, as their welding would have come first.
   Status finish(Status stop, Report& report) {
+    // A mesh only one piece of one object uses may give its memory to the object's mesh.
+    std::map<const threemf::MeshData*, int> uses;
+    for (const Weld& w : welds_)
+      for (const Collector::Piece& p : w.pieces) ++uses[p.data];
     tbb::parallel_for(size_t{0}, welds_.size(), [&](size_t i) {
       Weld& w = welds_[i];
-      // One mesh taken whole, in mm, unturned: welded as it was read (the identity would give the
-      // same floats, but for -0, which the welding makes +0 either way).
-      if (w.pieces.size() == 1 && w.pieces[0].keep.empty() && w.pieces[0].t.matrix() == Eigen::Matrix4d::Identity()) {
-        w.mesh = geo::weld_indexed(w.pieces[0].data->vertices, w.pieces[0].data->triangles, w.where, log_[w.item]);
+      // A mesh the scanner read (in the welder's order already), taken whole, in mm, unturned: only
+      // the welding's last step is left (the identity would give the same floats, but for -0,
+      // which the welding makes +0 either way). Any other: gathered, through its transform.
+      if (w.pieces.size() == 1 && w.pieces[0].keep.empty() && w.pieces[0].t.matrix() == Eigen::Matrix4d::Identity() &&
+          w.pieces[0].data->ordered) {
+        threemf::MeshData& d = *w.pieces[0].data;
+        w.mesh = uses.at(&d) == 1 ? geo::weld_ordered(std::move(d.vertices), std::move(d.triangles), w.where, log_[w.item])
+                                  : geo::weld_ordered(std::vector(d.vertices), std::vector(d.triangles), w.where,
+                                                      log_[w.item]);
         w.pieces.clear();
         return;
       }
       std::vector<float> vertices;
-      std::vector<uint32_t> triangles;
+      std::vector<std::array<uint32_t, 3>> triangles;
       Collector::gather(w.pieces, vertices, triangles);
       w.pieces.clear();
-      w.mesh = geo::weld_indexed(vertices, triangles, w.where, log_[w.item]);
+      w.mesh = geo::weld_indexed(vertices, std::move(triangles), w.where, log_[w.item]);
     });
     size_t next = 0;  // of welds_, in item order
     for (size_t item = 0; item < log_.size(); ++item) {
@@ -387,7 +397,7 @@ class Build {
 
   const std::string& file_;
   const threemf::Package& pkg_;
-  const std::map<uint32_t, threemf::MeshData>& meshes_;
+  std::map<uint32_t, threemf::MeshData>& meshes_;
   const Eigen::Affine3d to_mm_;
   const std::string stem_;
   std::vector<Object> objects_;

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/mesh/weld.h"
+
 namespace tranche::plate::threemf {
 namespace {
 
@@ -217,11 +219,48 @@ class Scanner {
 // How reading a run of elements ended: at its closing tag, at an element it does not read, or
 // with the cursor at or past the limit it was given (a streamed text's window: read on after more
 // text has come).
-enum class Run { kDone, kFailed, kMore };
+enum class Run { kDone, kFailed, kMore, kBad };
+
+// A value that no reader takes as a number (kBad): where it is (at its opening quote) and what.
+struct Bad {
+  size_t at = std::string_view::npos;
+  std::string what;  // `vertex 3 has the coordinate x="abc"` (counted from 0, as the indices)
+};
+
+// Whether `v` is written as the 3MF specification writes a number (ST_Number; an index: digits),
+// with an optional sign and the spaces XML allows around it, or holds a character reference (which
+// lib3mf judges): else no reader takes it as one. Only the values the scanner did not read are
+// asked.
+bool number_like(std::string_view v, bool index) {
+  if (v.find('&') != std::string_view::npos) return true;
+  while (!v.empty() && space(v.front())) v.remove_prefix(1);
+  while (!v.empty() && space(v.back())) v.remove_suffix(1);
+  size_t i = 0;
+  const auto digits = [&] {
+    const size_t from = i;
+    while (i < v.size() && digit(v[i])) ++i;
+    return i > from;
+  };
+  if (i < v.size() && (v[i] == '+' || v[i] == '-')) ++i;
+  if (index) return digits() && i == v.size();
+  const bool whole = digits();
+  bool fraction = false;
+  if (i < v.size() && v[i] == '.') {
+    ++i;
+    fraction = digits();
+  }
+  if (!whole && !fraction) return false;
+  if (i < v.size() && (v[i] == 'e' || v[i] == 'E')) {
+    ++i;
+    if (i < v.size() && (v[i] == '+' || v[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == v.size();
+}
 
 // `<vertex x=".." y=".." z=".."/>` elements up to `</vertices>`; an element is begun only before
 // `limit`.
-Run vertices(Scanner& sc, std::vector<float>& out, size_t limit) {
+Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
   for (;;) {
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
@@ -238,8 +277,15 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit) {
     const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
       if (name.size() != 1 || name[0] < 'x' || name[0] > 'z') return true;
       got |= 1 << (name[0] - 'x');
-      return parse(value, xyz[name[0] - 'x']) && std::isfinite(xyz[name[0] - 'x']);
+      if (parse(value, xyz[name[0] - 'x']) && std::isfinite(xyz[name[0] - 'x'])) return true;
+      if (!number_like(value, false))
+        bad.what = fmt::format("vertex {} has the coordinate {}=\"{}\"", out.size() / 3, name, value.substr(0, 40));
+      return false;
     });
+    if (!bad.what.empty()) {
+      bad.at = sc.pos();
+      return Run::kBad;
+    }
     if (!closed || !*closed || got != 7) return Run::kFailed;
     out.insert(out.end(), xyz, xyz + 3);
   }
@@ -247,7 +293,7 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit) {
 
 // `<triangle v1=".." v2=".." v3=".." .../>` elements up to `</triangles>` (properties ignored); an
 // element is begun only before `limit`.
-Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
+Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t limit, Bad& bad) {
   for (;;) {
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
@@ -255,7 +301,7 @@ Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
     static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
-      out.insert(out.end(), v, v + 3);
+      out.push_back({v[0], v[1], v[2]});
       continue;
     }
     if (!sc.open("triangle")) return Run::kFailed;
@@ -263,35 +309,47 @@ Run triangles(Scanner& sc, std::vector<uint32_t>& out, size_t limit) {
     const auto closed = sc.attributes([&](std::string_view name, std::string_view value) {
       if (name.size() != 2 || name[0] != 'v' || name[1] < '1' || name[1] > '3') return true;
       got |= 1 << (name[1] - '1');
-      return parse(value, v[name[1] - '1']);
+      if (parse(value, v[name[1] - '1'])) return true;
+      if (!number_like(value, true))
+        bad.what = fmt::format("triangle {} has the vertex index {}=\"{}\"", out.size(), name, value.substr(0, 40));
+      return false;
     });
+    if (!bad.what.empty()) {
+      bad.at = sc.pos();
+      return Run::kBad;
+    }
     if (!closed || !*closed || got != 7) return Run::kFailed;
-    out.insert(out.end(), v, v + 3);
+    out.push_back({v[0], v[1], v[2]});
   }
 }
 
 // Whether a mesh read to its end is one to take: it has triangles, and their indices are in range
 // (else lib3mf says what is wrong).
-bool complete(const MeshData& m) {
-  if (m.triangles.empty()) return false;
-  const size_t nv = m.vertices.size() / 3;
-  for (uint32_t v : m.triangles)
-    if (v >= nv) return false;
-  return true;
+// (`nv` vertices read.)
+bool complete(const std::vector<std::array<uint32_t, 3>>& triangles, size_t nv) {
+  if (triangles.empty()) return false;
+  uint32_t most = 0;
+  for (const auto& t : triangles) most = std::max({most, t[0], t[1], t[2]});
+  return most < nv;
 }
 
-// A plain `<mesh>` at the cursor, read to its end; nothing for any other form, or a mesh lib3mf
-// would refuse (a coordinate that is not a finite number, a vertex index out of range).
-std::optional<MeshData> mesh(Scanner& sc) {
+// A plain `<mesh>` at the cursor, read to its end, in the welder's order; nothing for any other
+// form, or a mesh lib3mf would refuse (a coordinate that is not a finite number, a vertex index
+// out of range); `bad` says where a value is no number at all.
+std::optional<MeshData> mesh(Scanner& sc, Bad& bad) {
   MeshData m;
+  std::vector<float> read;
   if (!sc.start("mesh")) return std::nullopt;
   sc.skip_space();
   constexpr size_t kWhole = std::string_view::npos;  // no limit: the text is all there
-  if (!sc.start("vertices") || vertices(sc, m.vertices, kWhole) != Run::kDone) return std::nullopt;
+  if (!sc.start("vertices") || vertices(sc, read, kWhole, bad) != Run::kDone) return std::nullopt;
   sc.skip_space();
-  if (!sc.start("triangles") || triangles(sc, m.triangles, kWhole) != Run::kDone) return std::nullopt;
+  if (!sc.start("triangles") || triangles(sc, m.triangles, kWhole, bad) != Run::kDone) return std::nullopt;
   sc.skip_space();
-  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
+  if (!sc.eat("</mesh>") || !complete(m.triangles, read.size() / 3)) return std::nullopt;
+  geo::WeldScratch scratch;
+  geo::order_by_first_use(read.data(), read.size() / 3, m.triangles, m.vertices, scratch);
+  m.ordered = true;
   return m;
 }
 
@@ -344,6 +402,14 @@ std::vector<size_t> find_objects(std::string_view xml) {
   return out;
 }
 
+// Whether `at` lies in a comment of `xml` (which lib3mf skips).
+bool in_comment(std::string_view xml, size_t at) {
+  const size_t open = xml.rfind("<!--", at);
+  if (open == std::string_view::npos) return false;
+  const size_t close = xml.find("-->", open + 4);
+  return close == std::string_view::npos || close > at;
+}
+
 }  // namespace
 
 SplitModel split_meshes(std::string_view xml) {
@@ -364,6 +430,7 @@ SplitModel split_meshes(std::string_view xml) {
     std::optional<uint32_t> id;     // when the tag is not closed by itself
     size_t start = 0, end = 0;      // of the mesh, if it reads
     std::optional<MeshData> mesh;
+    Bad bad;                        // a value in it that is no number
   };
   constexpr size_t kAhead = 16;
   const std::vector<size_t> objects = find_objects(xml);
@@ -401,7 +468,7 @@ SplitModel split_meshes(std::string_view xml) {
       Scanner sc(xml, a.after);
       sc.skip_space();
       a.start = sc.pos();
-      a.mesh = mesh(sc);
+      a.mesh = mesh(sc, a.bad);
       a.end = sc.pos();
     });
     for (Ahead& a : batch) {
@@ -415,6 +482,11 @@ SplitModel split_meshes(std::string_view xml) {
         continue;
       }
       at = a.after;
+      if (a.id && *a.id < kMaxId && !out.meshes.count(*a.id) && !a.mesh && a.bad.at != std::string_view::npos &&
+          out.bad.empty() && !in_comment(xml, a.bad.at))
+        out.bad = fmt::format("line {}, object {}: {}, which is not a number",
+                              1 + std::count(xml.begin(), xml.begin() + static_cast<ptrdiff_t>(a.bad.at), '\n'), *a.id,
+                              a.bad.what);
       if (!a.id || *a.id >= kMaxId || out.meshes.count(*a.id) || !a.mesh) continue;
       out.model.append(xml.substr(copied, a.start - copied));
       out.model += placeholder(*a.id);
@@ -423,7 +495,11 @@ SplitModel split_meshes(std::string_view xml) {
     }
     if (!done) at = next_object(at);
   }
-  if (out.meshes.empty()) return SplitModel{};
+  if (out.meshes.empty()) {
+    SplitModel none;
+    none.bad = std::move(out.bad);
+    return none;
+  }
   out.model.append(xml.substr(copied));
   return out;
 }
@@ -439,9 +515,16 @@ class Window {
   static constexpr size_t kLook = size_t{64} << 10;
   static constexpr size_t kFill = size_t{1} << 20;  // read at once: the window is kFill + kLook
 
-  explicit Window(const Pull& pull) : pull_(pull), buf_(new char[kFill + kLook]) {}
+  explicit Window(const Pull& pull) : pull_(&pull), buf_(new char[kFill + kLook]), text_(buf_.get()) {}
+  // The text read where `chunks` puts it.
+  explicit Window(Chunks& chunks) : chunks_(&chunks) {}
+  ~Window() {
+    if (chunks_ && chunk_) chunks_->give_back(chunk_);
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
 
-  std::string_view text() const { return {buf_.get(), size_}; }
+  std::string_view text() const { return {text_, size_}; }
   size_t size() const { return size_; }
   bool ended() const { return ended_; }
   // Where an element may begin: kLook before the window's end, unless the text ends in it.
@@ -452,11 +535,12 @@ class Window {
   bool refill(size_t& at) {
     if (ended_) return true;
     ++refills_;
+    if (chunks_) return next_chunk(at);
     std::memmove(buf_.get(), buf_.get() + at, size_ - at);
     size_ -= at;
     at = 0;
     while (size_ < kFill + kLook && !ended_) {
-      const std::optional<size_t> got = pull_(buf_.get() + size_, kFill + kLook - size_);
+      const std::optional<size_t> got = (*pull_)(buf_.get() + size_, kFill + kLook - size_);
       if (!got) return false;
       ended_ = *got == 0;
       size_ += *got;
@@ -469,8 +553,39 @@ class Window {
   size_t refills() const { return refills_; }
 
  private:
-  const Pull& pull_;
-  std::unique_ptr<char[]> buf_;
+  static_assert(Chunks::kRoom >= kLook);  // a refill keeps at most kLook bytes
+
+  // refill() from chunks: the text from `at` on (at most kLook bytes, as every caller keeps)
+  // copied into the room before the next chunk, which the window then is.
+  bool next_chunk(size_t& at) {
+    do {  // a short chunk is joined to the next
+      const size_t tail = size_ - at;
+      if (tail > Chunks::kRoom) return false;
+      const std::optional<Chunks::Chunk> c = chunks_->next();
+      if (!c) return false;
+      if (c->size == 0) {
+        ended_ = true;
+        text_ += at;
+        size_ = tail;
+        at = 0;
+        return true;
+      }
+      char* to = c->data + Chunks::kRoom - tail;
+      if (tail) std::memcpy(to, text_ + at, tail);
+      if (chunk_) chunks_->give_back(chunk_);
+      chunk_ = c->data;
+      text_ = to;
+      size_ = tail + c->size;
+      at = 0;
+    } while (size_ <= kLook);
+    return true;
+  }
+
+  const Pull* pull_ = nullptr;
+  Chunks* chunks_ = nullptr;
+  std::unique_ptr<char[]> buf_;  // the pull's window
+  char* chunk_ = nullptr;        // the chunk the text is in
+  const char* text_ = nullptr;
   size_t size_ = 0;
   size_t refills_ = 0;
   bool ended_ = false;
@@ -478,52 +593,63 @@ class Window {
 
 // Reads a run of elements (vertices() or triangles()) from `at` on, through the window's refills.
 template <class T>
-bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Run (*run)(Scanner&, std::vector<T>&, size_t)) {
+bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Bad& bad,
+                  Run (*run)(Scanner&, std::vector<T>&, size_t, Bad&)) {
   for (;;) {
     Scanner sc(w.text(), at);
-    const Run r = run(sc, out, w.limit());
+    const Run r = run(sc, out, w.limit(), bad);
     at = sc.pos();
     if (r != Run::kMore) return r == Run::kDone;
     if (!w.refill(at)) return false;
   }
 }
 
+// Memory kept from mesh to mesh (grown once) by the streamed pass.
+struct Scratch {
+  std::vector<float> vertices;  // as read
+  Bad bad;                      // a value that is no number: the whole text says where
+  geo::WeldScratch weld;
+};
+
 // mesh() on a streamed text, `at` moved past it; nothing when it does not read. The vertices are
-// read into `scratch` (kept from mesh to mesh, its memory grown once), then copied to a vector of
-// their size; the triangles into room for as many as a closed mesh has (twice the vertices).
-std::optional<MeshData> streamed_mesh(Window& w, size_t& at, std::vector<float>& scratch) {
+// read into `scratch` and put in the welder's order into a vector of their size; the triangles
+// into room for as many as a closed mesh has (twice the vertices).
+std::optional<MeshData> streamed_mesh(Window& w, size_t& at, Scratch& scratch) {
   MeshData m;
   Scanner sc(w.text(), at);
   if (!sc.start("mesh")) return std::nullopt;
   sc.skip_space();
   if (!sc.start("vertices")) return std::nullopt;
   at = sc.pos();
-  scratch.clear();
-  if (!streamed_run(w, at, scratch, vertices) || !w.look(at)) return std::nullopt;
-  m.vertices.assign(scratch.begin(), scratch.end());
-  m.triangles.reserve(2 * m.vertices.size() + 3);
+  scratch.vertices.clear();
+  if (!streamed_run(w, at, scratch.vertices, scratch.bad, vertices) || !w.look(at)) return std::nullopt;
+  const size_t nv = scratch.vertices.size() / 3;
+  m.triangles.reserve(2 * nv + 1);
   sc = Scanner(w.text(), at);
   sc.skip_space();
   if (!sc.start("triangles")) return std::nullopt;
   at = sc.pos();
-  if (!streamed_run(w, at, m.triangles, triangles) || !w.look(at)) return std::nullopt;
+  if (!streamed_run(w, at, m.triangles, scratch.bad, triangles) || !w.look(at)) return std::nullopt;
   sc = Scanner(w.text(), at);
   sc.skip_space();
-  if (!sc.eat("</mesh>") || !complete(m)) return std::nullopt;
+  if (!sc.eat("</mesh>") || !complete(m.triangles, nv)) return std::nullopt;
   at = sc.pos();
+  geo::order_by_first_use(scratch.vertices.data(), nv, m.triangles, m.vertices, scratch.weld);
+  m.ordered = true;
   return m;
 }
 
 }  // namespace
 
-std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
+namespace {
+
+std::optional<SplitModel> split_streamed(Window& w) {
   // split_meshes' pass, object after object, but on a window of the text. An element is read only
   // where it lies whole in the window (kLook past its start), and whatever this pass would leave
   // in place (a mesh that does not read, an object id taken twice) gives up: split_meshes, on the
   // whole text, then decides, so that a result from here is always the one it gives.
   SplitModel out;
-  Window w(pull);
-  std::vector<float> scratch;
+  Scratch scratch;
   size_t at = 0;  // the text before `at` is in out.model, or was a mesh replaced
   if (!w.refill(at)) return std::nullopt;
   for (;;) {
@@ -586,7 +712,8 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
     std::optional<MeshData> m = streamed_mesh(w, end, scratch);
     if (!m) {
       // Passed over as well, but only where this pass saw what split_meshes sees: the whole rest
-      // of the text, none of it let go.
+      // of the text, none of it let go. A value that is no number: the whole text says where.
+      if (!scratch.bad.what.empty()) return std::nullopt;
       if (w.refills() == refills && w.ended()) continue;
       return std::nullopt;
     }
@@ -596,6 +723,18 @@ std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
   }
   if (out.meshes.empty()) return SplitModel{};
   return out;
+}
+
+}  // namespace
+
+std::optional<SplitModel> split_meshes_streamed(const Pull& pull) {
+  Window w(pull);
+  return split_streamed(w);
+}
+
+std::optional<SplitModel> split_meshes_streamed(Chunks& chunks) {
+  Window w(chunks);
+  return split_streamed(w);
 }
 
 std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c) {

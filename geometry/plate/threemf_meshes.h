@@ -16,6 +16,7 @@
 // at a time; the others by it).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -24,16 +25,27 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/mesh/mesh.h"
+
 namespace tranche::plate::threemf {
 
+// A mesh the scanner read is in the welder's order (geo::order_by_first_use, while the mesh is
+// still in the cache): exactly equal vertices merged, the vertices in the order the triangles
+// first use them, unused ones left out, every triangle kept (degenerate ones too: PrusaSlicer's
+// volumes count them). What the 3MF reads is unchanged; the welding after is only its last step.
 struct MeshData {
-  std::vector<float> vertices;      // x, y, z of each vertex, in the model's unit
-  std::vector<uint32_t> triangles;  // v1, v2, v3 of each triangle (not yet checked against the vertices)
+  std::vector<geo::Vec3> vertices;                 // in the model's unit (floats, as the file's are read)
+  std::vector<std::array<uint32_t, 3>> triangles;  // vertex indices of each triangle, in range
+  bool ordered = false;                            // in the welder's order (the scanner's meshes)
 };
 
 struct SplitModel {
   std::string model;                    // the model part, the meshes read here replaced by placeholders
   std::map<uint32_t, MeshData> meshes;  // by the id of their object
+  // Not empty: a mesh holds a value that neither the scanner nor lib3mf would read as a number
+  // (lib3mf 1.8 reads "abc" or "" as 0): where and what, `line 12, object 1: vertex 3 has the
+  // coordinate x="abc", which is not a number`. The load fails with it.
+  std::string bad;
 };
 
 // Reads the plain meshes of the model part `xml`; `meshes` is empty when there was none.
@@ -46,8 +58,28 @@ using Pull = std::function<std::optional<size_t>(char* out, size_t n)>;
 // split_meshes on a model part read in pieces from `pull`, never whole in memory (a window of about
 // 1 MiB): the result split_meshes gives on the whole text, or nothing where the whole text is
 // needed to say it (an object whose mesh would be left to lib3mf, an id given twice, an element
-// longer than 64 KiB, a text that cannot be read); the caller then reads the part whole.
+// longer than 64 KiB, a value that is no number, a text that cannot be read); the caller then
+// reads the part whole.
 std::optional<SplitModel> split_meshes_streamed(const Pull& pull);
+
+// A model part another thread reads ahead, in chunks the scanner reads where they are (no copy
+// but of the few bytes of an element cut by a chunk's end, into the room before the next chunk).
+class Chunks {
+ public:
+  static constexpr size_t kRoom = size_t{64} << 10;  // before each chunk's text
+  struct Chunk {
+    char* data = nullptr;  // the text is at data + kRoom
+    size_t size = 0;       // 0: the text has ended
+  };
+  virtual ~Chunks() = default;
+  // The next chunk; nothing when the text cannot be read.
+  virtual std::optional<Chunk> next() = 0;
+  // A chunk next() gave, no longer read.
+  virtual void give_back(char* data) = 0;
+};
+
+// split_meshes_streamed on chunks: the same result, or nothing where it gives nothing.
+std::optional<SplitModel> split_meshes_streamed(Chunks& chunks);
 
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
 // (x, y, z each), if it is one.

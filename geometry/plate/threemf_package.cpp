@@ -318,16 +318,20 @@ class Repacker {
 };
 
 // A ZIP entry inflated ahead on a thread of its own, a few chunks at a time, while the caller
-// scans what came before: inflating (one thread, as deflate is) and reading the meshes overlap.
-class ReadAhead {
+// scans what came before, where it was inflated: inflating (one thread, as deflate is) and
+// reading the meshes overlap.
+class ReadAhead : public Chunks {
  public:
   explicit ReadAhead(ZipStream& in) : in_(in) {
-    for (int i = 0; i < kChunks; ++i) free_.push_back(std::make_unique<char[]>(kChunk));
+    for (int i = 0; i < kChunks; ++i) {
+      memory_.push_back(std::make_unique<char[]>(kRoom + kChunk));
+      free_.push_back(memory_.back().get());
+    }
     thread_ = std::thread([this] { run(); });
   }
   ReadAhead(const ReadAhead&) = delete;
   ReadAhead& operator=(const ReadAhead&) = delete;
-  ~ReadAhead() {
+  ~ReadAhead() override {
     {
       std::lock_guard lock(m_);
       stop_ = true;
@@ -336,34 +340,29 @@ class ReadAhead {
     thread_.join();
   }
 
-  // As ZipStream::read, but nothing for an error (its words are the whole read's to give).
-  std::optional<size_t> pull(char* out, size_t n) {
-    while (used_ == current_.size) {
-      std::unique_lock lock(m_);
-      if (current_.data) free_.push_back(std::move(current_.data));
-      cv_.notify_all();
-      cv_.wait(lock, [&] { return !ready_.empty() || ended_ || failed_; });
-      if (ready_.empty()) {
-        if (failed_) return std::nullopt;
-        return size_t{0};
-      }
-      current_ = std::move(ready_.front());
-      ready_.pop_front();
-      used_ = 0;
+  // Nothing for an error (its words are the whole read's to give).
+  std::optional<Chunk> next() override {
+    std::unique_lock lock(m_);
+    cv_.wait(lock, [&] { return !ready_.empty() || ended_ || failed_; });
+    if (ready_.empty()) {
+      if (failed_) return std::nullopt;
+      return Chunk{};
     }
-    const size_t k = std::min(n, current_.size - used_);
-    std::memcpy(out, current_.data.get() + used_, k);
-    used_ += k;
-    return k;
+    const Chunk c = ready_.front();
+    ready_.pop_front();
+    return c;
+  }
+  void give_back(char* data) override {
+    {
+      std::lock_guard lock(m_);
+      free_.push_back(data);
+    }
+    cv_.notify_all();
   }
 
  private:
   static constexpr int kChunks = 4;
   static constexpr size_t kChunk = size_t{1} << 20;
-  struct Chunk {
-    std::unique_ptr<char[]> data;
-    size_t size = 0;
-  };
 
   void run() {
     for (;;) {
@@ -372,13 +371,13 @@ class ReadAhead {
         std::unique_lock lock(m_);
         cv_.wait(lock, [&] { return !free_.empty() || stop_; });
         if (stop_) return;
-        c.data = std::move(free_.back());
+        c.data = free_.back();
         free_.pop_back();
       }
       bool end = false, bad = false;
       try {  // an exception must not leave this thread: it only fails the stream (read whole then)
         while (c.size < kChunk) {
-          auto got = in_.read(c.data.get() + c.size, kChunk - c.size);
+          auto got = in_.read(c.data + kRoom + c.size, kChunk - c.size);
           if (!got) {
             bad = true;
             break;
@@ -394,7 +393,8 @@ class ReadAhead {
       }
       {
         std::lock_guard lock(m_);
-        if (c.size > 0 && !bad) ready_.push_back(std::move(c));
+        if (c.size > 0 && !bad) ready_.push_back(c);
+        else free_.push_back(c.data);
         ended_ = end;
         failed_ = bad;
       }
@@ -404,13 +404,12 @@ class ReadAhead {
   }
 
   ZipStream& in_;
+  std::vector<std::unique_ptr<char[]>> memory_;
   std::mutex m_;
   std::condition_variable cv_;
   std::deque<Chunk> ready_;
-  std::vector<std::unique_ptr<char[]>> free_;
+  std::vector<char*> free_;
   bool ended_ = false, failed_ = false, stop_ = false;
-  Chunk current_;  // the caller's
-  size_t used_ = 0;
   std::thread thread_;  // last: started once the rest is made
 };
 
@@ -464,7 +463,7 @@ Result<std::string> without_meshes(std::string_view bytes, const std::string& ro
   if (auto in = zip->stream(*model, kPartLimit)) {
     if (model->size >= kReadAhead) {
       ReadAhead ahead(*in);
-      streamed = split_meshes_streamed([&](char* out, size_t n) { return ahead.pull(out, n); });
+      streamed = split_meshes_streamed(ahead);
     } else {
       streamed = split_meshes_streamed([&](char* out, size_t n) -> std::optional<size_t> {
         auto got = in->read(out, n);
@@ -478,6 +477,11 @@ Result<std::string> without_meshes(std::string_view bytes, const std::string& ro
     auto xml = zip->read_bytes(*model, kPartLimit);
     if (!xml) return xml.error();
     split = split_meshes(xml->view());
+    if (!split.bad.empty()) {
+      Error e{file + ", " + model->name, split.bad + "; the file is damaged — export it again"};
+      split = SplitModel{};
+      return e;
+    }
   }
   if (split.meshes.empty()) return std::string();
   std::vector<std::pair<std::string, std::string>> parts;
