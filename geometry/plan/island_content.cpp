@@ -219,11 +219,11 @@ Status place_cells(IslandPlan& ip, Nest& nest, const RegionFill& f, std::vector<
 // A sparse region filled with a pattern other than the zig-zag (geometry/toolpath/infill_patterns):
 // each path is a cell of its own, at the island's angle (the cell stage does not turn them).
 // Lightning's branches (geometry/toolpath/lightning.h) are grown for all layers at once, at the
-// first request, and shared through the setup: every point of a top held within spacing /
-// density of a branch (PrusaSlicer's radius; Cura's is half that, but its trees, grown from the
-// edge of the held area, come out about that much closer than lines), in the material less the island's walls (perimeters × the
-// fill's spacing: a little less than the walls, so that the roots, clipped to the region, end on
-// them).
+// first request, and shared through the setup: every point of a top held within width / density
+// of a leaf (PrusaSlicer's supporting radius: its infill's width × 100 / density %; Cura's is
+// half that, but its trees, grown from the edge of the held area, come out about that much
+// closer than lines), in the material less the island's walls (perimeters × the fill's spacing:
+// a little less than the walls, so that the roots, clipped to the region, end on them).
 void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::InfillPattern pattern,
                    toolpath::Neighbours& nb, double angle, double density) {
   std::vector<toolpath::FillPath> fps;
@@ -240,7 +240,7 @@ void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::Infi
   if (pattern == schema::InfillPattern::Lightning) {
     toolpath::LightningSpec ls;
     ls.top_layers = static_cast<int>(ip.props[PropId::TopLayers]);
-    ls.radius_mm = f.s / density;
+    ls.radius_mm = f.w / density;
     ls.inset_mm = std::max(ip.props[PropId::Perimeters], 0.0) * f.s;
     ls.angle_deg = toolpath::LightningCache::kAngleDeg;
     fps = toolpath::clip_fill_lines(nest.setup().lightning.lines(nest.setup().layers, nb.index(), ls), shape, ps);

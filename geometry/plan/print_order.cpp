@@ -180,11 +180,15 @@ class IslandOrder {
     const toolpath::EdgeGrid* grid = nullptr;
     for (const auto& r : regions_)
       if (r.kind == b.kind) grid = &r.grid;
+    const double limit = join_reach_mm(b) * geo::kUnitsPerMm;
+    return grid && dist2(from, to) <= limit * limit && !grid->crosses(from, to);
+  }
+  // The longest short extrusion that may start zig-zag b (mm).
+  double join_reach_mm(const PathPlan& b) const {
     double s = toolpath::bead_spacing_mm(b.width, height_);
     double pitch =
         b.kind == PathKind::Infill ? s / std::max(1e-3, std::min(1.0, b.props[PropId::InfillDensity])) : s;
-    double limit = std::max(2.5 * s, 1.5 * pitch) * geo::kUnitsPerMm;
-    return grid && dist2(from, to) <= limit * limit && !grid->crosses(from, to);
+    return std::max(2.5 * s, 1.5 * pitch);
   }
 
   // Zig-zags (one per cell): the order with the fewest and shortest travels, either end may
@@ -213,8 +217,15 @@ class IslandOrder {
     };
     std::vector<const geo::Ring*> ends;
     for (const auto& f : fills_) ends.push_back(&f.pts);
+    // A step costs its length plus kTravelMm unless it joins (then nothing, and it is at most
+    // `reach` long): with many zig-zags (a lightning layer's branches) the greedy order looks at
+    // the nearest ones first.
+    double reach = 0;
+    for (const auto& f : fills_) reach = std::max(reach, join_reach_mm(f));
+    auto lower = [reach](double d) { return d > reach ? d + kTravelMm : 0.0; };
     const size_t first_fill = out_.size();
-    for (const toolpath::Visit& v : toolpath::chain_open_best(ends, pos_, step, 48, end_cost)) {
+    for (const toolpath::Visit& v :
+         toolpath::chain_open_best(ends, pos_, step, 48, end_cost, lower, std::max(reach, 2.0))) {
       PathPlan& p = fills_[v.index];
       if (v.reversed) {
         std::reverse(p.pts.begin(), p.pts.end());

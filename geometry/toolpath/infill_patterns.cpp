@@ -70,11 +70,14 @@ void line_family(geo::Rings& out, double dir_deg, double pitch, double offset, d
 }
 
 // Trapezoid waves drawing flat-topped hexagons of side `a` (mm), plateaus of neighbouring waves
-// `gap` apart (one bead: the shared edges printed twice side by side).
+// `gap` apart (one bead: the shared edges printed twice side by side). The plateaus, moved half
+// a gap off the hexagon's edge, run on by lo/√3 at each end, so that the slopes keep the
+// hexagon's 60° (as PrusaSlicer's FillHoneycomb's do).
 void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, double y0, double x1, double y1) {
   Frame f(angle, x0, y0, x1, y1);
   const double h = a * std::sqrt(3.0) / 2, period = 3 * a;
   const double lo = std::min(0.5 * gap, 0.45 * h), hi = h - lo;  // plateau heights within a wave
+  const double e = lo / std::sqrt(3.0);                           // the plateaus' run-on
   const double j0 = std::floor(f.v0 / h) - 1, j1 = std::ceil(f.v1 / h);
   const double n0 = std::floor(f.u0 / period) - 1, n1 = std::ceil(f.u1 / period) + 1;
   for (double j = j0; j <= j1; j += 1) {
@@ -83,10 +86,10 @@ void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, d
     geo::Ring w;
     for (double n = n0; n <= n1; n += 1) {
       const double u = n * period + shift;
-      w.push_back(f.bed(u, base + lo));
-      w.push_back(f.bed(u + a, base + lo));
-      w.push_back(f.bed(u + 1.5 * a, base + hi));
-      w.push_back(f.bed(u + 2.5 * a, base + hi));
+      w.push_back(f.bed(u - e, base + lo));
+      w.push_back(f.bed(u + a + e, base + lo));
+      w.push_back(f.bed(u + 1.5 * a - e, base + hi));
+      w.push_back(f.bed(u + 2.5 * a + e, base + hi));
     }
     if (static_cast<long long>(j) % 2 != 0) std::reverse(w.begin(), w.end());
     out.push_back(std::move(w));
@@ -436,7 +439,20 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   return out;
 }
 
+// Honeycomb: half the distance between a hexagon's opposite flat edges (mm), spacing / density
+// as PrusaSlicer's FillHoneycomb (see plastic_fraction).
+double honeycomb_apothem(double spacing, double density) { return spacing / std::min(density, 1.0); }
+
 }  // namespace
+
+// Honeycomb, hexagons of apothem d = s/ρ: per column d wide and 2√3·d long, two slopes
+// 2(d − s)/√3 long and two plateaus (2d + s)/√3 long, (8d − 2s)/√3 of line over 2√3·d² of area:
+// ρ(4 − ρ)/3 of it covered with bead (1 at ρ = 1).
+double plastic_fraction(schema::InfillPattern pattern, double density) {
+  if (!(density > 0)) return 0;
+  const double rho = std::min(density, 1.0);
+  return pattern == InfillPattern::Honeycomb ? rho * (4 - rho) / 3 : rho;
+}
 
 geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x1, double y1) {
   geo::Rings out;
@@ -462,7 +478,7 @@ geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x
       break;
     }
     case InfillPattern::Honeycomb:
-      honeycomb(out, angle, 8 * s / (3 * std::sqrt(3.0) * rho), s, x0, y0, x1, y1);
+      honeycomb(out, angle, 2 * honeycomb_apothem(s, rho) / std::sqrt(3.0), s, x0, y0, x1, y1);
       break;
     case InfillPattern::Gyroid:
       gyroid(out, angle, kGyroidLength * s / rho, spec.z_mm, x0, y0, x1, y1);
@@ -482,7 +498,8 @@ std::vector<FillPath> clip_fill_lines(const geo::Rings& lines, const FillShape& 
 
 std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec) {
   if (!(spec.density > 0 && spec.spacing_mm > 0) || shape.rings.empty()) return {};
-  const double pitch = spec.spacing_mm / std::min(spec.density, 1.0);  // area per length of line
+  // Area per length of line: the pattern lays plastic_fraction × area of bead.
+  const double pitch = spec.spacing_mm / plastic_fraction(spec.pattern, spec.density);
   if (spec.pattern == InfillPattern::Concentric) return concentric(shape, spec.spacing_mm, pitch);
   const geo::BBox2 b = bbox(shape.rings);
   if (b.empty()) return {};

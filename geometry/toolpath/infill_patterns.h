@@ -7,16 +7,19 @@
 //
 // Density: the length of line per mm² of region is density / spacing (spacing: the distance of
 // solid lines, toolpath::bead_spacing_mm), so a pattern extrudes about density × area × height
-// of plastic whatever its shape:
+// of plastic whatever its shape, but for honeycomb, which keeps PrusaSlicer's meaning of the
+// density (ρ(4 − ρ)/3 of plastic, 0.253 at 20 %: plastic_fraction):
 //   grid        two sets of lines, at angle and angle + 90°, each 2·spacing/density apart;
 //   triangles   three sets at angle, +60°, +120°, each 3·spacing/density apart, all through the
 //               nodes of one triangular lattice;
 //   cubic       the triangles' three sets, each moved across by z/√2 (sign alternating so that
 //               the moves sum to zero): the sections of cubes standing on a corner, edge
 //               3·spacing/density·√(2/3);
-//   honeycomb   flat-topped hexagons of side 8·spacing/(3√3·density), drawn as trapezoid waves
-//               whose shared flat edges are printed twice, side by side one spacing apart (as
-//               PrusaSlicer's honeycomb);
+//   honeycomb   flat-topped hexagons 2·spacing/density between opposite sides (side
+//               2·spacing/(√3·density)), drawn as trapezoid waves whose shared flat edges are
+//               printed twice, side by side one spacing apart: PrusaSlicer's FillHoneycomb, whose
+//               doubled edges lay ρ(4 − ρ)/3 of plastic (about 4/3 × density when sparse, a
+//               whole layer at 100 %);
 //   gyroid      the section at z of the gyroid sin x cos y + sin y cos z + sin z cos x = 0 with
 //               period 2.45·spacing/density (its section has 2.45/period of line per mm²,
 //               averaged over z: from −6 % to +9 % on single layers), sampled to 20 µm;
@@ -46,8 +49,12 @@ struct PatternSpec {
   double link_max_mm = 0;  // longest link along the border (mm; 0: none)
 };
 
+// The share of a region's area that `pattern` at `density` covers with bead (0 to 1): density,
+// but density × (4 − density) / 3 for honeycomb (see above).
+double plastic_fraction(schema::InfillPattern pattern, double density);
+
 // The paths of `pattern` over `shape` (zigzag and lightning: none; see above for the others).
-// Each path's area_mm2 is its length times spacing / density.
+// Each path's area_mm2 is its length times spacing / plastic_fraction(pattern, density).
 std::vector<FillPath> pattern_fill(const FillShape& shape, const PatternSpec& spec);
 
 // Open polylines (bed units) clipped to `shape` and joined along its border as the patterns'

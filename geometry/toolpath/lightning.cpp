@@ -131,16 +131,18 @@ class NodeGrid {
  public:
   explicit NodeGrid(double cell) : cell_(cell) {}
   void add(const Forest& f, int id) { m_[key(f[static_cast<size_t>(id)].p)].push_back(id); }
-  // The node minimising cost(id, distance) among those nearer than `limit`, for which ok(id)
-  // holds: -1 if none. cost must be at least the distance.
+  // The node minimising cost(id, distance) among those whose cost is below `limit`, within
+  // `within` of p, for which ok(id) holds: -1 if none. cost must be at least the distance less
+  // `slack`.
   template <class Cost, class Ok>
-  int best(const Forest& f, P p, double limit, Cost&& cost, Ok&& ok) const {
+  int best(const Forest& f, P p, double limit, Cost&& cost, Ok&& ok, double slack = 0,
+           double within = std::numeric_limits<double>::infinity()) const {
     const int64_t px = cell_of(p.x, cell_), py = cell_of(p.y, cell_);
-    const auto reach = static_cast<int64_t>(std::ceil(limit / cell_)) + 1;
+    const auto reach = static_cast<int64_t>(std::ceil(std::min(limit + slack, within) / cell_)) + 1;
     int found = -1;
     double best = limit;
     for (int64_t r = 0; r <= reach; ++r) {
-      if (static_cast<double>(r - 1) * cell_ >= best) break;
+      if (static_cast<double>(r - 1) * cell_ >= best + slack) break;
       for (int64_t ix = px - r; ix <= px + r; ++ix)
         for (int64_t iy = py - r; iy <= py + r; ++iy) {
           if (std::max(std::abs(ix - px), std::abs(iy - py)) != r) continue;
@@ -148,7 +150,7 @@ class NodeGrid {
           if (it == m_.end()) continue;
           for (int id : it->second) {
             const double d = dist(p, f[static_cast<size_t>(id)].p);
-            if (d >= best) continue;
+            if (d >= best + slack || d > within) continue;
             const double c = cost(id, d);
             if (c < best && ok(id)) best = c, found = id;
           }
@@ -198,10 +200,17 @@ struct LayerGround {
   double radius, wall;  // units: the supporting radius, the walls' (h·tan(angle))
 };
 
-// The cost of joining to node id at distance d: nodes with three children already are avoided
-// (a radius further), so that branches fork rather than fan out.
-double join_cost(const std::vector<int>& nkids, int id, double d, double radius) {
-  return d + (nkids[static_cast<size_t>(id)] >= 3 ? radius : 0);
+// The cost of joining a new leaf or a root that left the border to node id at distance d,
+// against the border's (its distance): as PrusaSlicer's lightning (Node::getWeightedDistance),
+// a node with one to three edges counts kBoost radii nearer, so that leaves and roots join a
+// tree a little further away rather than the walls, and trees grow long and branch. (Nodes are
+// looked for up to a radius beyond the border's distance: PrusaSlicer looks in the cells of its
+// 4 mm grid round the border's distance.)
+constexpr double kBoost = 4;
+double join_cost(const Forest& f, const std::vector<int>& nkids, int id, double d, double radius) {
+  const auto k = static_cast<size_t>(id);
+  const int valence = (f[k].parent >= 0 ? 1 : 0) + nkids[k];
+  return valence > 0 && valence < 4 ? d - kBoost * radius : d;
 }
 
 // Roots that no longer stand on the border: joined to another tree or to the border.
@@ -223,8 +232,9 @@ void reground(Forest& f, const LayerGround& L) {
     if (db >= L.wall) {
       const int self = static_cast<int>(i);
       to = nodes.best(
-          f, p, db, [&](int id, double d) { return join_cost(nkids, id, d, L.radius); },
-          [&](int id) { return !under(f, id, self) && !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); });
+          f, p, db, [&](int id, double d) { return join_cost(f, nkids, id, d, L.radius); },
+          [&](int id) { return !under(f, id, self) && !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); },
+          kBoost * L.radius, db + L.radius);
     }
     if (to < 0) {
       to = add_root(f, b, p, db);
@@ -293,16 +303,16 @@ uint32_t mix(uint64_t v) {
   return static_cast<uint32_t>(v);
 }
 
-// New branches for the points of `need` no branch holds yet: nearest the border first (in bands
-// one radius wide, in a scattered order within a band), each joined to the nearest node nearer
-// than the border, else to the border.
+// New leaves for the points of `need`, as PrusaSlicer's lightning grows them: nearest the
+// border first (in bands one radius wide, in a scattered order within a band), each point not
+// yet within a radius of a leaf becomes one, holding the points within a radius of it; it joins
+// the tree node or the border of least join_cost (the border's: its distance).
 void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
   if (need.empty()) return;
-  // A quarter radius, at least 0.2 mm: at high densities a finer grid only costs time.
-  Lattice lat(need, std::max(0.25 * L.radius, 0.2 * geo::kUnitsPerMm));
+  // A sixth of the radius (PrusaSlicer's distance field's cells), at least 0.2 mm: at high
+  // densities a finer grid only costs time.
+  Lattice lat(need, std::max(L.radius / 6, 0.2 * geo::kUnitsPerMm));
   if (lat.pts.empty()) return;
-  for (const Node& n : f)
-    if (n.parent >= 0) lat.hold(n.p, f[static_cast<size_t>(n.parent)].p, L.radius);
   struct Todo {
     size_t k;
     P b;
@@ -335,9 +345,11 @@ void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
       lat.held[t.k] = 1;
       continue;
     }
+    // Nodes up to a radius beyond the border's distance.
     int to = nodes.best(
-        f, p, t.db, [&](int id, double d) { return join_cost(nkids, id, d, L.radius); },
-        [&](int id) { return !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); });
+        f, p, t.db, [&](int id, double d) { return join_cost(f, nkids, id, d, L.radius); },
+        [&](int id) { return !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); }, kBoost * L.radius,
+        t.db + L.radius);
     if (to < 0) {
       to = add_root(f, t.b, p, t.db);
       nkids.push_back(0);
@@ -347,7 +359,7 @@ void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
     nkids.push_back(0);
     ++nkids[static_cast<size_t>(to)];
     nodes.add(f, static_cast<int>(f.size()) - 1);
-    lat.hold(f[static_cast<size_t>(to)].p, p, L.radius);
+    lat.hold(p, p, L.radius);
     lat.held[t.k] = 1;
   }
 }

@@ -9,12 +9,16 @@
 //   carried     each leaf shortened by h·tan(angle) ("prune": a branch leans at most `angle`
 //               from vertical), chains of single nodes pulled straight by up to h·tan(angle)
 //               ("straighten"), nodes outside outline(i) and edges that leave it removed;
-//   regrounded  a tree whose root is no longer on the border is joined to the nearest node of
-//               another tree (merging them) or to the nearest point of the border;
-//   grown       points of need(i) on a grid of radius/4 (0.2 mm at least), nearest the border first, each not
-//               within `radius_mm` of a branch yet becomes a leaf: joined to the nearest tree
-//               node closer than the border, else to the border (a new tree anchored at the
-//               walls).
+//   regrounded  a tree whose root is no longer on the border is joined to a node of another
+//               tree (merging them) or to the nearest point of the border, by the cost below;
+//   grown       points of need(i) on a grid of radius/6 (0.2 mm at least), nearest the border
+//               first, each not within `radius_mm` of a leaf yet becomes one (PrusaSlicer's
+//               lightning: a leaf holds the points round it, its branch none): joined to the
+//               tree node or the border of least cost, the border's its distance, a node's its
+//               distance less 4 radii when it has one to three edges (so that leaves join
+//               trees rather than the walls and trees grow long), nodes looked for up to a
+//               radius beyond the border's distance; joined to the border, it is a new tree
+//               anchored at the walls.
 // A layer's branches are its forest's edges as open polylines: each tree walked from its root,
 // a branch continuing its parent's polyline, every further one starting its own. The slicer clips
 // them to the island's sparse region and joins them along its border as the other patterns
@@ -33,7 +37,7 @@ namespace tranche::toolpath {
 
 struct LightningSpec {
   int top_layers = 3;      // solid layers under each top: the trees hold up the lowest one
-  double radius_mm = 1.0;  // a point of a top is held when a branch passes within this distance
+  double radius_mm = 1.0;  // a point of a top is held when a leaf lies within this distance
   double inset_mm = 0.0;   // the sparse region's distance inside the material (the walls)
   double angle_deg = 40;   // overhang of branches from vertical (Cura's prune/straighten angle)
 };
@@ -56,7 +60,9 @@ class LightningCache {
   // The branches of layer `index` of `layers` (always the same layers for one cache).
   const geo::Rings& lines(std::span<const geo::Layer> layers, int index, const LightningSpec& spec) const;
 
-  static constexpr double kAngleDeg = 40;  // Cura's lightning_infill_prune_angle
+  // PrusaSlicer's lightning_infill_prune_angle, straightening and overhang angles (Cura's
+  // default is 40°: 45° prunes the trees a layer height a layer).
+  static constexpr double kAngleDeg = 45;
 
  private:
   mutable std::mutex mu_;

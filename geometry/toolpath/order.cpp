@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <optional>
+#include <unordered_map>
 
 namespace tranche::toolpath {
 
@@ -233,8 +235,64 @@ std::vector<Visit> chain_open(const std::vector<const geo::Ring*>& paths, const 
   return order;
 }
 
+namespace {
+
+// The paths' ends (index × 2 + 1 for a path's last point, where a reversed run starts) on a hash
+// grid, for the greedy order's nearest ends first.
+class EndGrid {
+ public:
+  EndGrid(const std::vector<const geo::Ring*>& paths, double cell) : paths_(paths), cell_(cell) {
+    for (size_t i = 0; i < paths.size(); ++i) {
+      if (paths[i]->empty()) continue;
+      for (bool rev : {false, true}) {
+        const Point& p = rev ? paths[i]->back() : paths[i]->front();
+        const int64_t x = of(p.X), y = of(p.Y);
+        if (!any_) x0_ = x1_ = x, y0_ = y1_ = y, any_ = true;
+        x0_ = std::min(x0_, x), x1_ = std::max(x1_, x), y0_ = std::min(y0_, y), y1_ = std::max(y1_, y);
+        cells_[key(x, y)].push_back(2 * i + (rev ? 1 : 0));
+      }
+    }
+  }
+  // Calls visit(i, rev) for the unused ends in rings of cells round p, nearest rings first,
+  // until stop(d) for d, a distance (units) no end of the next ring is nearer than.
+  template <class Visit, class Stop>
+  void scan(const Point& p, const std::vector<char>& used, Visit&& visit, Stop&& stop) const {
+    if (!any_) return;
+    const int64_t px = of(p.X), py = of(p.Y);
+    const int64_t far = std::max({std::abs(px - x0_), std::abs(px - x1_), std::abs(py - y0_), std::abs(py - y1_)});
+    for (int64_t r = 0; r <= far; ++r) {
+      if (r > 0 && stop(static_cast<double>(r - 1) * cell_)) return;
+      for (int64_t x = px - r; x <= px + r; ++x) {
+        if (x < x0_ || x > x1_) continue;
+        const int64_t dy = std::abs(x - px) == r ? 1 : 2 * r;  // whole column on the ring's sides
+        for (int64_t y = py - r; y <= py + r; y += std::max<int64_t>(dy, 1)) {
+          if (y < y0_ || y > y1_) continue;
+          auto it = cells_.find(key(x, y));
+          if (it == cells_.end()) continue;
+          for (size_t e : it->second)
+            if (!used[e / 2]) visit(e / 2, (e & 1) != 0);
+        }
+      }
+    }
+  }
+
+ private:
+  int64_t of(geo::coord_t v) const { return static_cast<int64_t>(std::floor(static_cast<double>(v) / cell_)); }
+  static uint64_t key(int64_t x, int64_t y) {
+    return (static_cast<uint64_t>(x) << 32) ^ static_cast<uint64_t>(static_cast<uint32_t>(y));
+  }
+  const std::vector<const geo::Ring*>& paths_;
+  double cell_;
+  bool any_ = false;
+  int64_t x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0;
+  std::unordered_map<uint64_t, std::vector<size_t>> cells_;
+};
+
+}  // namespace
+
 std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const Point& from,
-                                   const StepCost& cost, size_t max_tries, const EndCost& end_cost) {
+                                   const StepCost& cost, size_t max_tries, const EndCost& end_cost,
+                                   const LowerCost& lower, double cell_mm) {
   const size_t n = paths.size();
   auto start_of = [&](size_t i, bool rev) -> const Point& {
     return rev ? paths[i]->back() : paths[i]->front();
@@ -243,6 +301,9 @@ std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, c
     return rev ? paths[i]->front() : paths[i]->back();
   };
   std::vector<char> used(n);
+  // With many paths and a lower bound, the greedy steps look at the nearest ends first.
+  std::optional<EndGrid> grid;
+  if (lower && n > max_tries && cell_mm > 0) grid.emplace(paths, cell_mm * geo::kUnitsPerMm);
   // Greedy from `first` (or from the cheapest first step when `first` is kStart); returns its cost.
   auto greedy = [&](size_t first, bool first_rev, std::vector<Visit>& order) {
     std::fill(used.begin(), used.end(), 0);
@@ -260,6 +321,17 @@ std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, c
       };
       if (step == 0 && first != kStart) {
         consider(first, first_rev);
+      } else if (grid) {
+        // The same choice as the scan below: the cheapest, of equal ones the lowest index, its
+        // own direction first.
+        grid->scan(
+            pos, used,
+            [&](size_t i, bool rev) {
+              const double c = cost(cur, pos, i, start_of(i, rev));
+              if (c < bc || (c == bc && bi != kStart && (i < bi || (i == bi && !rev && brev))))
+                bc = c, bi = i, brev = rev;
+            },
+            [&](double d) { return bi != kStart && lower(d * geo::kMmPerUnit) > bc; });
       } else {
         for (size_t i = 0; i < n; ++i)
           if (!used[i] && !paths[i]->empty()) consider(i, false), consider(i, true);

@@ -78,7 +78,13 @@ using StepCost = std::function<double(size_t i, const geo::Point& a, size_t j, c
 // previous one ended.
 // `end_cost`, if given, is added for where the last path ends (what comes next starts there).
 using EndCost = std::function<double(const geo::Point& end)>;
+// `lower`, if given, bounds the step cost from below by the step's length (mm): cost(i, a, j, b)
+// ≥ lower(|ab|) for all steps, lower non-decreasing. The greedy order from `from` (with more than
+// max_tries paths) then looks at the paths' ends nearest first, over a grid, until lower says
+// no further end can be cheaper: the same order, without trying every path at every step.
+using LowerCost = std::function<double(double length_mm)>;
 std::vector<Visit> chain_open_best(const std::vector<const geo::Ring*>& paths, const geo::Point& from,
-                                   const StepCost& cost, size_t max_tries = 48, const EndCost& end_cost = {});
+                                   const StepCost& cost, size_t max_tries = 48, const EndCost& end_cost = {},
+                                   const LowerCost& lower = {}, double cell_mm = 10);
 
 }  // namespace tranche::toolpath

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace tranche::toolpath::zigzag_detail {
 namespace {
@@ -33,7 +35,8 @@ void reverse(Poly& P) {
 // Links along the border between polylines, and the stretches of the rings they cover.
 class BorderLinker {
  public:
-  BorderLinker(const std::vector<Ring2>& rings, double limit) : rings_(rings), limit_(limit) {}
+  BorderLinker(const std::vector<Ring2>& rings, double limit, bool index)
+      : index_(index), rings_(rings), limit_(limit) {}
 
   std::vector<Poly> chain(std::vector<Poly> polys);
 
@@ -46,6 +49,17 @@ class BorderLinker {
   double walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
               Stretch& st) const;
   Link best_link(const Poly& cur, const std::vector<Poly>& polys, const std::vector<char>& used) const;
+  void index_ends(const std::vector<Poly>& polys);
+
+  // The polylines' ends on a hash grid of cells `limit_` wide (when that is fine enough to
+  // help): a link is at most limit_ long, so its other end lies in the 3 × 3 cells round its
+  // start. Each entry: polyline index × 2 + (1 for its last point).
+  static uint64_t cell_key(int64_t x, int64_t y) {
+    return (static_cast<uint64_t>(x) << 32) ^ static_cast<uint64_t>(static_cast<uint32_t>(y));
+  }
+  int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / limit_)); }
+  bool index_ = true, indexed_ = false;
+  std::unordered_map<uint64_t, std::vector<size_t>> ends_;
 
   const std::vector<Ring2>& rings_;
   const double limit_;                    // longest link, units
@@ -142,20 +156,47 @@ double BorderLinker::walk(const End& from, const End& b, std::vector<UV>& pts, s
   return best;
 }
 
-// The shortest link from cur's last point to either end of an unused polyline.
+// Many polylines (a lightning layer's branches, a large region's lines): their ends on the
+// grid, so that best_link looks at the few near cur's end instead of all of them.
+void BorderLinker::index_ends(const std::vector<Poly>& polys) {
+  constexpr size_t kMany = 64;
+  indexed_ = index_ && polys.size() > kMany && limit_ >= 1e3 && limit_ <= 1e9;  // 1 µm to 1 m
+  if (!indexed_) return;
+  for (size_t j = 0; j < polys.size(); ++j)
+    for (bool at_end : {false, true}) {
+      const UV& p = (at_end ? polys[j].last : polys[j].first).p;
+      ends_[cell_key(cell_of(p.u), cell_of(p.v))].push_back(2 * j + (at_end ? 1 : 0));
+    }
+}
+
+// The shortest link from cur's last point to either end of an unused polyline (of equal ones,
+// the one of the lowest index, its first point before its last).
 Link BorderLinker::best_link(const Poly& cur, const std::vector<Poly>& polys,
                              const std::vector<char>& used) const {
   Link best;
   std::vector<UV> tp;
   std::vector<Border> tk;
   Stretch ts{0, 0};
-  for (size_t j = 0; j < polys.size(); ++j) {
-    if (used[j]) continue;
-    for (bool at_end : {false, true}) {
-      double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts);
-      if (l < best.len) best = {l, j, at_end, std::move(tp), std::move(tk), ts};
+  auto consider = [&](size_t j, bool at_end) {
+    double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts);
+    if (l < best.len || (l == best.len && l < 1e300 && (j < best.poly || (j == best.poly && !at_end && best.at_end))))
+      best = {l, j, at_end, std::move(tp), std::move(tk), ts};
+  };
+  if (!indexed_) {
+    for (size_t j = 0; j < polys.size(); ++j) {
+      if (used[j]) continue;
+      for (bool at_end : {false, true}) consider(j, at_end);
     }
+    return best;
   }
+  const int64_t cx = cell_of(cur.last.p.u), cy = cell_of(cur.last.p.v);
+  for (int64_t x = cx - 1; x <= cx + 1; ++x)
+    for (int64_t y = cy - 1; y <= cy + 1; ++y) {
+      auto it = ends_.find(cell_key(x, y));
+      if (it == ends_.end()) continue;
+      for (size_t e : it->second)
+        if (!used[e / 2]) consider(e / 2, (e & 1) != 0);
+    }
   return best;
 }
 
@@ -163,6 +204,7 @@ Link BorderLinker::best_link(const Poly& cur, const std::vector<Poly>& polys,
 std::vector<Poly> BorderLinker::chain(std::vector<Poly> polys) {
   if (!(limit_ > 0 && polys.size() > 1)) return polys;
   measure_rings();
+  index_ends(polys);
   std::vector<Poly> chains;
   std::vector<char> used(polys.size(), 0);
   for (size_t i = 0; i < polys.size(); ++i) {
@@ -196,8 +238,9 @@ std::vector<Poly> BorderLinker::chain(std::vector<Poly> polys) {
 
 }  // namespace
 
-std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit) {
-  return BorderLinker(rings, limit).chain(std::move(polys));
+std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit,
+                                    bool index) {
+  return BorderLinker(rings, limit, index).chain(std::move(polys));
 }
 
 }  // namespace tranche::toolpath::zigzag_detail

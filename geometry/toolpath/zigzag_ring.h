@@ -59,7 +59,10 @@ struct Poly {
 
 // Polylines joined end to start by links along the border of `rings` at most `limit` units long
 // (FillSpec::link_max_mm), greedily from each polyline in turn; `polys` unchanged when limit <= 0.
-std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit);
+// With many polylines (more than 64) their ends are looked up on a grid of cells `limit` wide:
+// the same links as trying every end (index = false, for tests), without the quadratic cost.
+std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit,
+                                    bool index = true);
 
 // Polylines to paths, each point through `to_point` (UV -> bed point), points that round
 // together merged; paths of fewer than two points dropped.

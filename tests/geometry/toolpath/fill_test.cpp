@@ -10,6 +10,7 @@
 #include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/perimeters.h"
 #include "geometry/toolpath/zigzag.h"
+#include "geometry/toolpath/zigzag_ring.h"
 
 using namespace tranche;
 using namespace tranche::toolpath;
@@ -304,4 +305,40 @@ TEST_CASE("zig-zag: on a ring, links join the runs round the hole, each stretch 
     ++cover[{which, edge}];
   }
   for (const auto& [edge, n] : cover) CHECK_MESSAGE(n <= 1, "circle ", edge.first, " edge ", edge.second);
+}
+
+// With many polylines, the links along the border look up the ends on a grid of cells a link
+// long: the same paths as trying every end. 150 chords across a 60 mm square at shuffled x, links
+// up to 2 mm.
+TEST_CASE("zigzag links: the grid of ends links as trying every end does") {
+  using namespace tranche::toolpath::zigzag_detail;
+  const double u = geo::kUnitsPerMm;
+  Ring2 sq;
+  sq.pts = {{0, 0}, {60 * u, 0}, {60 * u, 60 * u}, {0, 60 * u}};
+  sq.kinds.assign(4, geo::EdgeKind::Real);
+  std::vector<Poly> polys;
+  uint64_t seed = 777;
+  for (int i = 0; i < 150; ++i) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double x = (0.2 + 0.39 * ((i * 37) % 150) + 0.05 * static_cast<double>(seed >> 60)) * u;
+    Poly p;
+    p.pts = {{x, 0}, {x, 60 * u}};
+    p.border = {schema::Border::None};
+    p.first = End{0, 0, p.pts[0]};
+    p.last = End{0, 2, p.pts[1]};
+    if (i % 3 == 0) std::swap(p.first, p.last), std::reverse(p.pts.begin(), p.pts.end());
+    polys.push_back(p);
+  }
+  const auto slow = link_along_border(polys, {sq}, 2 * u, false);
+  const auto fast = link_along_border(polys, {sq}, 2 * u, true);
+  REQUIRE(fast.size() == slow.size());
+  CHECK(slow.size() < 20);  // linked: a handful of paths, not 150
+  for (size_t k = 0; k < slow.size(); ++k) {
+    CAPTURE(k);
+    REQUIRE(fast[k].pts.size() == slow[k].pts.size());
+    for (size_t j = 0; j < slow[k].pts.size(); ++j) {
+      CHECK(fast[k].pts[j].u == slow[k].pts[j].u);
+      CHECK(fast[k].pts[j].v == slow[k].pts[j].v);
+    }
+  }
 }

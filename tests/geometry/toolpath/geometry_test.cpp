@@ -412,3 +412,42 @@ TEST_CASE("clip: rings listed clockwise (outers) are offset as Clipper offsets t
   }
   CHECK(area_mm2(toolpath::offset(cw, 0)) == Approx(100 - 16).epsilon(1e-9));
 }
+
+// With many paths, chain_open_best's greedy order looks at the nearest ends first (a grid of
+// their ends, `lower` bounding the cost by the step's length): the same order as trying every
+// path at every step. 300 short paths scattered over 100 mm, joined for free when 1 mm apart
+// or less, else a travel: the cost of emit_fills.
+TEST_CASE("chain: the greedy order over a grid of ends is the one from trying every end") {
+  std::vector<geo::Ring> rings;
+  uint64_t seed = 12345;
+  auto rnd = [&] {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < 300; ++i) {
+    const double x = 100 * rnd(), y = 100 * rnd(), a = 6.3 * rnd(), l = 0.2 + 3 * rnd();
+    rings.push_back({geo::to_point(x, y), geo::to_point(x + l * std::cos(a), y + l * std::sin(a))});
+  }
+  // A few paths share an end (equal costs: the lowest index wins either way).
+  rings[7][0] = rings[3][1];
+  rings[200][1] = rings[100][0];
+  std::vector<const geo::Ring*> paths;
+  for (const auto& r : rings) paths.push_back(&r);
+  StepCost cost = [](size_t i, const geo::Point& a, size_t, const geo::Point& b) {
+    const double d = std::sqrt(dist2(a, b)) * geo::kMmPerUnit;
+    return i != kStart && d <= 1 ? 0.0 : d + 10;
+  };
+  LowerCost lower = [](double d) { return d > 1 ? d + 10 : 0.0; };
+  const auto plain = chain_open_best(paths, geo::to_point(50, 50), cost, 48);
+  for (double cell : {0.5, 2.0, 10.0}) {
+    CAPTURE(cell);
+    const auto fast = chain_open_best(paths, geo::to_point(50, 50), cost, 48, {}, lower, cell);
+    REQUIRE(fast.size() == plain.size());
+    for (size_t k = 0; k < plain.size(); ++k) {
+      CAPTURE(k);
+      CHECK(fast[k].index == plain[k].index);
+      CHECK(fast[k].reversed == plain[k].reversed);
+    }
+  }
+  CHECK(plain.size() == 300);
+}

@@ -55,7 +55,8 @@ std::string name_of(InfillPattern p) { return std::string(schema::enum_value_nam
 
 }  // namespace
 
-// Coverage: a pattern at density ρ lays ρ·area/spacing of line on a square. The lines are clipped
+// Coverage: a pattern at density ρ lays ρ·area/spacing of line on a square (honeycomb ρ(4 − ρ)/3,
+// plastic_fraction: PrusaSlicer's hexagons at ρ, their shared sides printed twice). The lines are clipped
 // at the border: on a square 3 to 9 pitches wide (20 mm at 20 % and 40 %, 40 mm at 10 %, where
 // the triangles' pitch is 13.5 mm), the lines against the border
 // differ from the ideal infinite pattern's by up to ±10 % (a line more or less, a wave cut at
@@ -73,20 +74,22 @@ TEST_CASE("infill patterns: extruded area on a 20 mm square is density × area")
       unlinked.link_max_mm = 0;
       auto lines = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), unlinked);
       const double extruded = length_mm(lines) * kSpacing;
-      CHECK(extruded > 0.88 * density * whole);
+      const double share = plastic_fraction(p, density);
+      CHECK(share == doctest::Approx(p == InfillPattern::Honeycomb ? density * (4 - density) / 3 : density));
+      CHECK(extruded > 0.88 * share * whole);
       // Concentric: its first loop touches the border (half a spacing inside it), which adds
       // (pitch − spacing) / 2 of band along the border: 4·side·(pitch − spacing)/2 of area.
       const double pitch = kSpacing / density;
       const double extra = p == InfillPattern::Concentric ? 4 * side * 0.5 * (pitch - kSpacing) * density : 0.0;
-      CHECK(extruded < 1.12 * density * whole + extra);
+      CHECK(extruded < 1.12 * share * whole + extra);
       auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(p, density));
       const double linked = length_mm(fps) * kSpacing;
       CHECK(linked >= extruded - 1e-6);
       CHECK(linked <= extruded + 4 * side * kSpacing);
-      // A path's area is that of its lines (links left out): their length times spacing / ρ.
+      // A path's area is that of its lines (links left out): their length times spacing / share.
       double area = 0;
       for (const auto& fp : fps) area += fp.area_mm2;
-      CHECK(area == doctest::Approx(extruded / density).epsilon(0.01));
+      CHECK(area == doctest::Approx(extruded / share).epsilon(0.01));
     }
   }
 }
@@ -215,3 +218,43 @@ TEST_CASE("infill patterns: concentric loops follow the border inward") {
   CHECK(length_mm(fps) == doctest::Approx(4 * (19.55 + 15.05 + 10.55 + 6.05 + 1.55) + 4 * 2.25).epsilon(0.02));
 }
 
+
+// Honeycomb keeps PrusaSlicer's meaning of the density (FillHoneycomb): hexagons whose opposite
+// sides are 2·spacing/ρ apart (side a = 2·spacing/(√3·ρ)), each wave of the pattern repeating
+// every three sides, its plateaus one spacing from the next wave's and run on by half a spacing
+// / √3 at each end, so that its slopes keep the hexagon's 60°. Their doubled shared sides lay
+// ρ(4 − ρ)/3 of plastic: on a 60 mm square at 20 %, 0.2533 × area / spacing of line.
+TEST_CASE("infill patterns: honeycomb's hexagons are PrusaSlicer's at the density") {
+  for (double density : {0.1, 0.2, 0.5, 0.8}) {
+    CAPTURE(density);
+    PatternSpec s = spec_of(InfillPattern::Honeycomb, density);
+    s.angle_deg = 0;  // waves along x
+    const geo::Rings waves = pattern_lines(s, 0, 0, 60, 60);
+    REQUIRE(waves.size() >= 2);
+    const geo::Ring& w = waves[0];
+    REQUIRE(w.size() >= 8);
+    const double side = 2 * kSpacing / (std::sqrt(3.0) * density), e = 0.5 * kSpacing / std::sqrt(3.0);
+    // A wave's points: plateau start, plateau end, slope, plateau, slope: x steps a + 2e, a/2 − 2e.
+    const double steps[2] = {side + 2 * e, 0.5 * side - 2 * e};
+    for (size_t i = 0; i + 1 < 8; ++i) {
+      const double dx = std::abs(geo::to_mm(w[i + 1].X - w[i].X));
+      CHECK(dx == doctest::Approx(steps[i % 2]).epsilon(1e-3));
+    }
+    // The slope rises the hexagon's half height less one spacing (the doubled sides), at 60°
+    // from the plateaus' normal: rise = √3 × run.
+    const double h = side * std::sqrt(3.0) / 2;
+    const double rise = std::abs(geo::to_mm(w[2].Y - w[1].Y)), run = std::abs(geo::to_mm(w[2].X - w[1].X));
+    CHECK(rise == doctest::Approx(h - kSpacing).epsilon(1e-3));
+    CHECK(rise == doctest::Approx(std::sqrt(3.0) * run).epsilon(1e-3));
+    CHECK(plastic_fraction(InfillPattern::Honeycomb, density) == doctest::Approx(density * (4 - density) / 3));
+  }
+  // The plastic on a square away from its border: the unlinked lines over 60 mm at 20 %.
+  const geo::Rings sq{test::rect(0, 0, 60, 60)};
+  PatternSpec s = spec_of(InfillPattern::Honeycomb, 0.2);
+  s.link_max_mm = 0;
+  const double extruded = length_mm(pattern_fill(fill_shape(sq, geo::EdgeKind::Real), s)) * kSpacing;
+  CHECK(extruded == doctest::Approx(0.2 * 3.8 / 3 * 3600).epsilon(0.02));
+  CHECK(plastic_fraction(InfillPattern::Honeycomb, 1.0) == doctest::Approx(1.0));
+  CHECK(plastic_fraction(InfillPattern::Honeycomb, 0.0) == 0);
+  CHECK(plastic_fraction(InfillPattern::Grid, 1.5) == 1);
+}

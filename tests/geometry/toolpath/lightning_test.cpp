@@ -18,7 +18,7 @@ using namespace tranche::toolpath;
 
 namespace {
 
-constexpr double kH = 0.2, kSpacing = 0.45;
+constexpr double kH = 0.2, kSpacing = 0.45, kWidth = 0.45;
 
 double length_mm(const geo::Rings& lines) {
   double l = 0;
@@ -26,20 +26,6 @@ double length_mm(const geo::Rings& lines) {
     for (size_t i = 1; i < line.size(); ++i)
       l += std::hypot(geo::to_mm(line[i].X - line[i - 1].X), geo::to_mm(line[i].Y - line[i - 1].Y));
   return l;
-}
-
-double seg_dist_mm(const geo::Point& a, const geo::Point& b, double x, double y) {
-  const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
-  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-  const double t = l2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / l2, 0.0, 1.0) : 0.0;
-  return std::hypot(x - ax - t * dx, y - ay - t * dy);
-}
-
-double nearest_branch_mm(const geo::Rings& lines, double x, double y) {
-  double d = std::numeric_limits<double>::infinity();
-  for (const auto& line : lines)
-    for (size_t i = 1; i < line.size(); ++i) d = std::min(d, seg_dist_mm(line[i - 1], line[i], x, y));
-  return d;
 }
 
 // A 40 mm square slab (layers 0-9) under a 6 mm square tower (layers 10-59): the tower's top,
@@ -50,13 +36,23 @@ std::vector<geo::Layer> slab_and_tower() {
   return layers;
 }
 
+// The slicer's spec (geometry/plan/island_content.cpp): PrusaSlicer's supporting radius, width /
+// density, and its 45°.
 LightningSpec spec_at(double density) {
   LightningSpec s;
   s.top_layers = 3;
-  s.radius_mm = 0.5 * kSpacing / density;
+  s.radius_mm = kWidth / density;
   s.inset_mm = 0.9;
-  s.angle_deg = 40;
+  s.angle_deg = 45;
   return s;
+}
+
+// The distance from (x, y) to the nearest node (polyline point) of a layer's trees.
+double nearest_node_mm(const geo::Rings& lines, double x, double y) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& line : lines)
+    for (const auto& p : line) d = std::min(d, std::hypot(geo::to_mm(p.X) - x, geo::to_mm(p.Y) - y));
+  return d;
 }
 
 }  // namespace
@@ -65,8 +61,8 @@ TEST_CASE("lightning: the areas to hold up are the undersides of the tops") {
   const auto layers = slab_and_tower();
   const auto a = lightning_areas(layers, spec_at(0.2));
   // The tower's top layers 57-59 are solid: layer 56 holds them up, its whole sparse area less
-  // the walls' band (0.2·tan 40° wide).
-  const double wall = kH * std::tan(40 * M_PI / 180), side = 6 - 2 * 0.9 - 2 * wall;
+  // the walls' band (0.2·tan 45° wide).
+  const double wall = kH * std::tan(45 * M_PI / 180), side = 6 - 2 * 0.9 - 2 * wall;
   CHECK(area_mm2(a.need[56]) == doctest::Approx(side * side).epsilon(0.01));
   for (int i = 10; i < 56; ++i) CHECK(a.need[static_cast<size_t>(i)].empty());
   // The slab's top (layers 7-9, less the tower) over layer 6.
@@ -75,29 +71,67 @@ TEST_CASE("lightning: the areas to hold up are the undersides of the tops") {
   CHECK(area_mm2(a.outline[30]) == doctest::Approx(4.2 * 4.2).epsilon(1e-3));
 }
 
-TEST_CASE("lightning: every point under a top is within the radius of a branch") {
-  // At 30 %: a radius of 0.75 mm, one bead plus one spacing (0.9 mm) with the grid's margin.
+// PrusaSlicer's meaning of the density: every point of a top's underside within width /
+// density of a leaf (a node of the trees, not only a branch), less the sampling grid's margin
+// (half its diagonal: the grid is a sixth of the radius).
+TEST_CASE("lightning: every point under a top is within the radius of a node") {
+  for (double density : {0.2, 0.3}) {
+    CAPTURE(density);
+    const auto layers = slab_and_tower();
+    const LightningSpec spec = spec_at(density);
+    const auto trees = lightning_trees(layers, spec);
+    const auto a = lightning_areas(layers, spec);
+    REQUIRE(!trees[56].empty());
+    const double reach = spec.radius_mm * (1 + std::sqrt(0.5) / 6) + 1e-3;
+    for (int layer : {56, 6}) {
+      CAPTURE(layer);
+      const EdgeGrid need(a.need[static_cast<size_t>(layer)]);
+      const geo::BBox2 b = bbox(a.need[static_cast<size_t>(layer)]);
+      double worst = 0;
+      int samples = 0;
+      for (double x = geo::to_mm(b.min_x); x <= geo::to_mm(b.max_x); x += 0.13)
+        for (double y = geo::to_mm(b.min_y); y <= geo::to_mm(b.max_y); y += 0.13) {
+          if (!need.inside(geo::to_point(x, y))) continue;
+          ++samples;
+          worst = std::max(worst, nearest_node_mm(trees[static_cast<size_t>(layer)], x, y));
+        }
+      CAPTURE(worst);
+      CHECK(samples > 50);
+      CHECK(worst <= reach);
+      // Not much closer either: the leaves are spread a radius apart.
+      CHECK(worst > 0.6 * spec.radius_mm);
+    }
+  }
+}
+
+// Plastic per area: under a large flat top (the slab's, 38 mm square, at 20 %) the leaves are
+// laid one per disc of a radius (2.25 mm) left unheld, about one per 1.5–2 R² of top, each
+// joined by a branch of one to two radii: 0.5–1.1 mm of branch per mm² of top divided by the
+// radius (a grid at 20 % lays 0.2 / spacing = 0.44 mm/mm², 1 / R). Then the trees shrink by the
+// pruning, 0.2 mm a layer from each tip (45°).
+TEST_CASE("lightning: the branch length under a large top, and its shrinking below") {
   const auto layers = slab_and_tower();
-  const LightningSpec spec = spec_at(0.3);
+  const LightningSpec spec = spec_at(0.2);
   const auto trees = lightning_trees(layers, spec);
   const auto a = lightning_areas(layers, spec);
-  REQUIRE(!trees[56].empty());
-  for (int layer : {56, 6}) {
-    CAPTURE(layer);
-    const EdgeGrid need(a.need[static_cast<size_t>(layer)]);
-    const geo::BBox2 b = bbox(a.need[static_cast<size_t>(layer)]);
-    double worst = 0;
-    int samples = 0;
-    for (double x = geo::to_mm(b.min_x); x <= geo::to_mm(b.max_x); x += 0.13)
-      for (double y = geo::to_mm(b.min_y); y <= geo::to_mm(b.max_y); y += 0.13) {
-        if (!need.inside(geo::to_point(x, y))) continue;
-        ++samples;
-        worst = std::max(worst, nearest_branch_mm(trees[static_cast<size_t>(layer)], x, y));
-      }
-    CAPTURE(worst);
-    CHECK(samples > 50);
-    CHECK(worst <= 2 * kSpacing);
+  const double top_area = area_mm2(a.need[6]);
+  const double per_area = length_mm(trees[6]) / top_area;
+  CAPTURE(per_area);
+  CHECK(per_area > 0.5 / spec.radius_mm);
+  CHECK(per_area < 1.1 / spec.radius_mm);
+  CHECK(length_mm(trees[5]) < length_mm(trees[6]));
+  CHECK(length_mm(trees[2]) < 0.9 * length_mm(trees[6]));
+  // Most leaves join a tree, not the walls: far fewer trees (roots: polylines starting on the
+  // slab's sparse border, 0.9 mm inside its sides) than polylines.
+  size_t roots = 0;
+  for (const auto& line : trees[6]) {
+    const double x = geo::to_mm(line[0].X), y = geo::to_mm(line[0].Y);
+    if (std::min({x - 0.9, 39.1 - x, y - 0.9, 39.1 - y}) < 0.01) ++roots;
   }
+  CAPTURE(roots);
+  CAPTURE(trees[6].size());
+  CHECK(roots > 0);
+  CHECK(2 * roots < trees[6].size());
 }
 
 TEST_CASE("lightning: a small top far above gets a thin tree that shrinks away below it") {
@@ -110,7 +144,7 @@ TEST_CASE("lightning: a small top far above gets a thin tree that shrinks away b
   const double top = length_mm(trees[56]);
   CHECK(top > 0.5 * grid_per_layer);
   CHECK(top < 1.5 * grid_per_layer);
-  // Going down the tower the branches are pruned by 0.17 mm a layer: shorter and shorter, and
+  // Going down the tower the branches are pruned by 0.2 mm a layer: shorter and shorter, and
   // gone well before the slab (every branch of a 4.2 mm wide tower is under 3 mm long).
   double last = top;
   for (int i = 55; i >= 10; --i) {
