@@ -23,18 +23,27 @@ OverhangWallSplit split_overhang_walls(const Rings& island, const Rings& below, 
   // A bead rests on the layer below when material lies within half a bead of its centre.
   Rings air_raw = difference(island, offset(near_below, 0.5 * bead_mm));
   if (air_raw.empty()) return out;
-  // Parts narrower than a bead go: a slope's walls leaning out a little each layer.
-  const Rings air = offset_open(air_raw, 0, 0.5 * bead_mm);
+  // Parts nowhere kMinAirAcrossMm wide go: a slope's walls leaning out a little each layer, a
+  // curved underside's crescent.
+  const double r = 0.5 * std::max(bead_mm, kMinAirAcrossMm);
+  const Rings wide = offset_open(air_raw, 0, r);
+  if (wide.empty()) return out;
+  // The air a bead wide around the wide parts (their corners as they are, not rounded).
+  const Rings air = intersection(offset_open(air_raw, 0, 0.5 * bead_mm), offset(wide, r + 0.5 * bead_mm));
   if (air.empty()) return out;
   const Rings band = difference(island, offset(island, -band_mm));
   if (offset_open(intersection(air, band), 0, 0.5 * bead_mm).empty()) return out;
+  double held = 0;
+  const double angle = bridge_angle_deg(air, near_below, 0.5 * bead_mm + 0.3, &held);
+  if (held < kMinHeldShare) return out;
   out.air = air;
   out.bridge = intersection(offset(air, anchor_mm), island);
-  out.angle_deg = bridge_angle_deg(air, near_below, 0.5 * bead_mm + 0.3);
+  out.angle_deg = angle;
   return out;
 }
 
-double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm) {
+double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm, double* held_share) {
+  if (held_share) *held_share = 0;
   if (air.empty()) return 0;
   const geo::BBox2 box = bbox(air);
   const EdgeGrid air_grid(air), below_grid(below);
@@ -49,7 +58,7 @@ double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm) {
   for (int step = 0; step < 36; ++step) {
     const double deg = step * 5.0, a = deg * std::numbers::pi / 180;
     const double dx = std::cos(a), dy = std::sin(a);  // along the lines
-    double hanging = 0, total = 0;
+    double hanging = 0, total = 0, held_len = 0;
     // Lines off the grid of vertices by an odd number of units: none runs through a vertex.
     for (double off = -half + 0.5 * pitch + 37; off < half; off += pitch) {
       const double ox = cx - dy * off, oy = cy + dx * off;
@@ -63,12 +72,16 @@ double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm) {
         const double x1 = double(A.X) + (double(B.X) - double(A.X)) * t1, y1 = double(A.Y) + (double(B.Y) - double(A.Y)) * t1;
         const int ends = int(held(x0 - dx * hold, y0 - dy * hold)) + int(held(x1 + dx * hold, y1 + dy * hold));
         total += l;
+        if (ends > 0) held_len += l;
         hanging += l * (ends == 2 ? l : ends == 1 ? 2 * l : 4 * across);
       }
     }
     if (total <= 0) continue;
     const double cost = hanging / total;
-    if (cost < best_cost - 1e-9) best_cost = cost, best_deg = deg;
+    if (cost < best_cost - 1e-9) {
+      best_cost = cost, best_deg = deg;
+      if (held_share) *held_share = held_len / total;
+    }
   }
   return best_deg;
 }

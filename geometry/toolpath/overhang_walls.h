@@ -16,6 +16,18 @@ namespace tranche::toolpath {
 // How far the bridge region reaches from the air into the island over the layer below, so that
 // its lines start on material (PrusaSlicer's bridges reach into their anchors likewise).
 inline constexpr double kBridgeAnchorMm = 1.5;
+// Air nowhere this wide is left to the walls: the crescent a curved underside adds on each layer
+// is printed by the walls leaning out, not by lines spanning anything (support's bridge detector,
+// geometry/support/overhang.cpp, asks the same of a bridge).
+inline constexpr double kMinAirAcrossMm = 2.0;
+// Nor is air whose best lines are held by the layer below at one end or both for less than this
+// share of their length: lines held nowhere gain nothing over the loops (an island printed
+// mostly over nothing, as the Stanford bunny's second layer over its few first-layer specks;
+// a cap's brim all round, whose lines in any one direction run along two of its sides). At 0.5
+// the bunny's belly layers were bridged: gcheck's band coverage fell to 0.871 on one of them and
+// the overflow rose from 0.32 to 2.33 mm², the lines' ends following its ragged outline worse
+// than the loops do.
+inline constexpr double kMinHeldShare = 0.8;
 
 struct OverhangWallSplit {
   geo::Rings air;     // the island's parts over air (farther than half a bead from the layer below) a bead wide or more
@@ -26,7 +38,8 @@ struct OverhangWallSplit {
 
 // The split of `island` (outline and holes) over `below` (the layer below's material): empty
 // when no part of the island's wall band (its border `band_mm` deep) lies over air at least
-// `bead_mm` wide, i.e. when the walls would only lean out a little, as on a slope.
+// `bead_mm` wide, i.e. when the walls would only lean out a little, as on a slope; also when the
+// air is nowhere kMinAirAcrossMm wide or its lines would be held less than kMinHeldShare.
 OverhangWallSplit split_overhang_walls(const geo::Rings& island, const geo::Rings& below, double band_mm,
                                        double bead_mm, double anchor_mm = kBridgeAnchorMm);
 
@@ -36,7 +49,9 @@ OverhangWallSplit split_overhang_walls(const geo::Rings& island, const geo::Ring
 // zig-zag lays them), at neither over four times the air's extent (held only by their
 // neighbours, however short); the direction with the least length-weighted mean wins. A gap held on two sides is crossed; a ledge held along one edge gets lines out
 // from that edge (a shelf's wall loops would run along it).
-double bridge_angle_deg(const geo::Rings& air, const geo::Rings& below, double hold_mm);
+// `held`, if given, receives the share (0..1) of that direction's line length held at one end
+// or both.
+double bridge_angle_deg(const geo::Rings& air, const geo::Rings& below, double hold_mm, double* held = nullptr);
 
 // The closed loops `loops` (a closing point not repeated) as open polylines, less their parts
 // inside `region`; pieces shorter than `min_mm` are dropped.

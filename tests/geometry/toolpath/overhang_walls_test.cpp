@@ -93,10 +93,20 @@ TEST_CASE("overhang walls: walls leaning out less than a bead, or an island on t
   // bridge, not the walls' business.
   const geo::Rings ring_below{rect(0, 0, 20, 20), rect(5, 5, 15, 15, false)};
   CHECK(toolpath::split_overhang_walls({rect(0, 0, 20, 20)}, ring_below, kBand, kBead).empty());
-  // Nothing below at all: everything is air, and no line is held; still a direction, no crash.
-  const auto free = toolpath::split_overhang_walls({rect(0, 0, 10, 4)}, {}, kBand, kBead);
-  CHECK_FALSE(free.empty());
-  CHECK(std::isfinite(free.angle_deg));
+  // Nothing below at all: everything is air, no line is held: the loops stay.
+  CHECK(toolpath::split_overhang_walls({rect(0, 0, 10, 4)}, {}, kBand, kBead).empty());
+  double held = 1;
+  CHECK(std::isfinite(toolpath::bridge_angle_deg({rect(0, 0, 10, 4)}, {}, 0.5, &held)));
+  CHECK(held == 0);
+  // An island mostly over nothing, held by a speck: its lines are held nowhere for the most part.
+  CHECK(toolpath::split_overhang_walls({rect(0, 0, 20, 20)}, {rect(9, 9, 10, 10)}, kBand, kBead).empty());
+  // Hanging 1.5 mm out on one side (a curved underside's crescent, steeper): nowhere 2 mm of air
+  // across, left to the walls; 2.5 mm out, bridged.
+  CHECK(toolpath::split_overhang_walls({rect(-1.5, 0, 10, 10)}, below, kBand, kBead).empty());
+  CHECK_FALSE(toolpath::split_overhang_walls({rect(-2.5, 0, 10, 10)}, below, kBand, kBead).empty());
+  // 2.5 mm out all round, a cap's brim: lines in one direction run along two of its sides held
+  // nowhere (under 80% of their length held): the loops stay.
+  CHECK(toolpath::split_overhang_walls({rect(-2.5, -2.5, 12.5, 12.5)}, below, kBand, kBead).empty());
 }
 
 TEST_CASE("overhang walls: a loop cut by a region comes out as one piece around the rest") {
