@@ -20,12 +20,16 @@ OverhangWallSplit split_overhang_walls(const Rings& island, const Rings& below, 
   const geo::coord_t m = geo::to_units(bead_mm + anchor_mm + 1);
   grown.min_x -= m, grown.min_y -= m, grown.max_x += m, grown.max_y += m;
   const Rings near_below = near(below, grown);
+  // Parts nowhere kMinAirAcrossMm wide go: a slope's walls leaning out a little each layer, a
+  // curved underside's crescent. First without growing the layer below (the common case, on
+  // every layer of every island, is answered by a boolean and a shrink of the slivers it leaves):
+  // what lies off the layer below contains the air, so if it is nowhere 2r wide neither is the air.
+  const double r = 0.5 * std::max(bead_mm, kMinAirAcrossMm);
+  const Rings bare = difference(island, near_below);
+  if (bare.empty() || offset(bare, -r).empty()) return out;
   // A bead rests on the layer below when material lies within half a bead of its centre.
   Rings air_raw = difference(island, offset(near_below, 0.5 * bead_mm));
   if (air_raw.empty()) return out;
-  // Parts nowhere kMinAirAcrossMm wide go: a slope's walls leaning out a little each layer, a
-  // curved underside's crescent.
-  const double r = 0.5 * std::max(bead_mm, kMinAirAcrossMm);
   const Rings wide = offset_open(air_raw, 0, r);
   if (wide.empty()) return out;
   // The air a bead wide around the wide parts (their corners as they are, not rounded).
