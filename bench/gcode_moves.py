@@ -4,6 +4,7 @@ moves(path) yields (kind, x0, y0, x, y, de) for every G0/G1: kind is the last ;T
 written), (x0, y0) -> (x, y) the move in absolute XY, de the filament it feeds (mm; M82/M83 and
 G92 handled, negative for a retraction). on_comment, if given, is called with every line that
 starts with ';' (;LAYER_CHANGE, ;Z:, ;TYPE:...) as it is read, between the moves around it.
+With with_z, each tuple ends with the nozzle's z at the end of the move (overhang_anchor.py).
 Also read by scripts/example-pictures.py.
 """
 import re
@@ -11,8 +12,8 @@ import re
 WORD = re.compile(r'([XYZE])(-?\d*\.?\d+)')
 
 
-def moves(path, on_comment=None):
-    rel_e, x, y, e = False, 0.0, 0.0, 0.0
+def moves(path, on_comment=None, with_z=False):
+    rel_e, x, y, z, e = False, 0.0, 0.0, 0.0, 0.0
     kind = ''
     with open(path, errors='replace') as f:
         for raw in f:
@@ -37,10 +38,11 @@ def moves(path, on_comment=None):
             elif cmd in ('G0', 'G1'):
                 w = dict(WORD.findall(line.upper()))
                 nx, ny = float(w.get('X', x)), float(w.get('Y', y))
+                z = float(w.get('Z', z))
                 de = 0.0
                 if 'E' in w:
                     v = float(w['E'])
                     de = v if rel_e else v - e
                     e = e + v if rel_e else v
-                yield kind, x, y, nx, ny, de
+                yield (kind, x, y, nx, ny, de, z) if with_z else (kind, x, y, nx, ny, de)
                 x, y = nx, ny

@@ -7,6 +7,8 @@ overhang_models.py OUTDIR      writes NAME.stl for every model and prints "NAME 
   flare_70   the same flaring 70 deg: radius 6 mm to 17 mm over 4 mm
   shelf      a 10 x 10 mm column 8 mm high under a 30 x 10 x 2 mm plate: 10 mm of flat shelf
              hanging out on two sides
+  ledges     a 10 x 10 mm column 8 mm high under a 2 mm plate 10 mm deep that hangs 3 mm out on one
+             side and 15 mm out on the other: a narrow ledge (a few wall beads wide) and a wide one
 """
 import math
 import os
@@ -44,6 +46,7 @@ MODELS = {
     'flare_70': lambda: frustum(6.0, 6.0 + 4.0 * math.tan(math.radians(70)), 4.0),
     # Two shells touching at z = 8 (the slicers union them).
     'shelf': lambda: box(10, 0, 0, 20, 10, 8) + box(0, 0, 8, 30, 10, 10),
+    'ledges': lambda: box(15, 0, 0, 25, 10, 8) + box(12, 0, 8, 40, 10, 10),
 }
 
 if __name__ == '__main__':

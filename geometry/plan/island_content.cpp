@@ -8,6 +8,7 @@
 #include "geometry/toolpath/flow.h"
 #include "geometry/toolpath/infill_patterns.h"
 #include "geometry/toolpath/island_shape.h"
+#include "geometry/toolpath/overhang_walls.h"
 #include "geometry/toolpath/perimeters.h"
 #include "geometry/toolpath/zigzag.h"
 
@@ -346,6 +347,50 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   spec.min_bead_width = P[PropId::MinBeadWidth];
   spec.max_bead_width = std::max(P[PropId::MaxBeadWidth], spec.min_bead_width);
   toolpath::Perimeters per = toolpath::make_perimeters(ip.shape, spec);
+  // overhang_walls = bridge: where the wall band lies over air a bead wide or more, that part of
+  // the island is a bridge (geometry/toolpath/overhang_walls.h); walls stay where they rest on
+  // the layer below. Not on the first layer (the bed holds it), nor where support holds it up.
+  toolpath::OverhangWallSplit over;
+  geo::Rings border_region;
+  if (nb.index() > 0 && !spec.widths.empty() &&
+      static_cast<schema::OverhangWalls>(static_cast<int>(P[PropId::OverhangWalls])) == schema::OverhangWalls::Bridge &&
+      static_cast<schema::Support>(static_cast<int>(P[PropId::Support])) == schema::Support::None) {
+    double band = 0.5 * (spec.widths.front() + spec.widths.back());
+    for (size_t k = 1; k < spec.widths.size(); ++k)
+      band += toolpath::bead_spacing_mm(spec.widths[k - 1], spec.widths[k], height_mm);
+    over = toolpath::split_overhang_walls(ip.shape, nb.layer(-1), band, spec.widths.front());
+  }
+  if (!over.empty()) {
+    const EdgeGrid bridge_grid(over.bridge);
+    std::vector<toolpath::Loop> whole;  // loops the bridge does not touch stay loops
+    for (auto& loop : per.loops) {
+      bool touched = !loop.ring.empty() && bridge_grid.inside(loop.ring.front());
+      for (size_t i = 0; i < loop.ring.size() && !touched; ++i)
+        touched = bridge_grid.crosses(loop.ring[i], loop.ring[(i + 1) % loop.ring.size()]);
+      if (!touched) {
+        whole.push_back(std::move(loop));
+        continue;
+      }
+      for (geo::Ring& piece : toolpath::loops_outside({loop.ring}, over.bridge, spec.widths.front())) {
+        PathPlan p;
+        p.kind = loop.depth == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter;
+        p.perimeter = loop.depth;
+        p.width = static_cast<float>(spec.widths[static_cast<size_t>(loop.depth)]);
+        p.pts = std::move(piece);
+        p.border.assign(p.piece_count(), schema::Border::Real);
+        p.props = loop_props[static_cast<size_t>(loop.depth)];
+        p.trace = nest.path_log(loop_logs[static_cast<size_t>(loop.depth)]);
+        ip.paths.push_back(std::move(p));
+      }
+    }
+    per.loops = std::move(whole);
+    // Gap fill inside the bridge region would lie on its lines.
+    std::erase_if(per.beads, [&](const toolpath::VarBead& b) {
+      return std::any_of(b.pts.begin(), b.pts.end(), [&](const geo::Point& q) { return bridge_grid.inside(q); });
+    });
+    border_region = per.fill_region;  // the cut along the bridge is no border: lines stop short of it
+    per.fill_region = toolpath::difference(per.fill_region, over.bridge);
+  }
   for (auto& loop : per.loops) {
     PathPlan p;
     p.kind = loop.depth == 0 ? PathKind::OuterPerimeter : PathKind::InnerPerimeter;
@@ -376,6 +421,18 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
       ip.paths.push_back(std::move(p));
     }
   }
+  if (!over.empty()) {
+    // The bridge: its lines' centres stay half an outer bead inside the outline, where they end
+    // on it; where the region meets the walls and the fill kept on the layer below, they stop
+    // half a spacing short (an artificial border).
+    const geo::Rings inside = toolpath::offset(ip.shape, -0.5 * spec.widths.front());
+    FillRegion region{PathKind::Bridge, toolpath::intersection(over.bridge, inside)};
+    if (!region.rings.empty()) {
+      const EdgeGrid outline(inside);
+      if (Status s = build_cells(ip, nest, region, {&outline}, over.angle_deg, height_mm, nb); !s) return s;
+      regions.push_back({region.kind, EdgeGrid(region.rings)});
+    }
+  }
   if (per.fill_region.empty()) return ok_status();
   toolpath::SolidSpec ss;
   ss.top_layers = static_cast<int>(P[PropId::TopLayers]);
@@ -399,12 +456,12 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
   geo::Rings wide;
   for (auto& region : fill) {
     if (region.kind == PathKind::Infill) continue;
-    if (wide.empty()) wide = toolpath::offset(per.fill_region, reach);
+    if (wide.empty()) wide = toolpath::offset(border_region.empty() ? per.fill_region : border_region, reach);
     region.rings = toolpath::intersection(toolpath::offset(region.rings, reach), wide);
   }
   // The island's fill border: where sparse regions meet the perimeters, and (grown) where solid
   // ones do.
-  EdgeGrid fill_grid(per.fill_region), wide_grid(wide);
+  EdgeGrid fill_grid(border_region.empty() ? per.fill_region : border_region), wide_grid(wide);
   std::vector<const EdgeGrid*> borders{&fill_grid};
   if (!wide.empty()) borders.push_back(&wide_grid);
   for (const FillRegion& region : fill) {

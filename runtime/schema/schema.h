@@ -96,6 +96,7 @@ enum class Thumbnails : uint8_t { None, Png, Qoi };
 enum class Support : uint8_t { None, Normal, Tree };
 enum class SupportPattern : uint8_t { Lines, Grid };
 enum class WallGenerator : uint8_t { Classic, Variable };
+enum class OverhangWalls : uint8_t { Loops, Bridge };
 enum class InfillPattern : uint8_t {
   Zigzag, Grid, Triangles, Cubic, Gyroid, Honeycomb, Concentric, Lightning
 };

@@ -50,6 +50,8 @@ TEST_CASE("schema: C++ enums agree with the enum tables") {
   CHECK(find_enum_value(EnumType::InfillPattern, "gyroid") == static_cast<int>(InfillPattern::Gyroid));
   CHECK(find_enum_value(EnumType::InfillPattern, "lightning") == static_cast<int>(InfillPattern::Lightning));
   CHECK(enum_info(EnumType::InfillPattern).values.size() == static_cast<size_t>(InfillPattern::Lightning) + 1);
+  CHECK(find_enum_value(EnumType::OverhangWalls, "bridge") == static_cast<int>(OverhangWalls::Bridge));
+  CHECK(enum_info(EnumType::OverhangWalls).values.size() == static_cast<size_t>(OverhangWalls::Bridge) + 1);
   CHECK(find_enum_value(EnumType::Border, "artificial") == static_cast<int>(Border::Artificial));
   CHECK(find_enum_value(EnumType::Flavor, "reprapfirmware") == static_cast<int>(Flavor::RepRapFirmware));
   CHECK(find_enum_value(EnumType::Seam, "rear") == static_cast<int>(Seam::Rear));
