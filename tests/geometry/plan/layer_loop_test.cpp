@@ -199,7 +199,8 @@ TEST_CASE("layer loop: piece.overhang measured and speed decided per piece only 
   const char* rules =
       "rule when path.kind == outer_perimeter and piece.overhang > 50% { speed = min(speed, 9 mm/s) }\n"
       "rule when path.kind == infill { speed = min(speed, 70 mm/s) }\n";
-  PrintFixture f(layers, rules, {{"skirt_loops", "0"}, {"perimeters", "1"}});
+  // The walls stay loops over the air (not bridge lines), so that one runs over it.
+  PrintFixture f(layers, rules, {{"skirt_loops", "0"}, {"perimeters", "1"}, {"overhang_walls", "loops"}});
   auto lp = f.plan(2);
   REQUIRE(lp.islands.size() == 1);
   int walls = 0, fills = 0;
@@ -223,7 +224,7 @@ TEST_CASE("layer loop: piece.overhang measured and speed decided per piece only 
   CHECK(fills > 0);
   // A hook reading the pieces' overhang needs it on every path.
   PrintFixture hooked(layers, std::string(rules) + "rule { after path { for pc in path.pieces { if pc.overhang > 99% { comment \"air\" } } } }\n",
-                      {{"skirt_loops", "0"}, {"perimeters", "1"}});
+                      {{"skirt_loops", "0"}, {"perimeters", "1"}, {"overhang_walls", "loops"}});
   for (const auto& p : hooked.plan(2).islands[0].paths)
     if (p.piece_count() > 0) CHECK(p.overhang.size() == p.piece_count());
 }
