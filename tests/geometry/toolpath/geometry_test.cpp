@@ -272,6 +272,32 @@ TEST_CASE("clip: offsets agree with Clipper's on curved, thin and holed shapes")
   CHECK(compared == 400);
 }
 
+TEST_CASE("clip: growing a region whose border zig-zags by noise agrees with Clipper's, and a hairline still grows") {
+  // Where two nearly equal borders cross (a fill and a shrunk neighbour), a boolean leaves a run
+  // of vertices a micrometre or two apart turning back and forth by a fraction of one: offset()
+  // drops those within 0.5 µm of their chord before growing. The region grown must not change.
+  geo::Ring ring{geo::to_point(20, 0), geo::to_point(20, 5)};
+  for (int i = 0; i <= 10000; ++i)  // the top: 20 mm in 2 µm steps, ±0.3 µm of noise
+    ring.push_back(geo::Point(geo::to_units(20 - 0.002 * i), geo::to_units(5) + (i % 2 ? 300 : -300)));
+  ring.push_back(geo::to_point(0, 0));
+  const geo::Rings region{ring};
+  REQUIRE(area_mm2(region) == Approx(100).epsilon(1e-4));
+  for (double d : {0.1125, 0.5625, 2.0}) {
+    INFO("grown by " << d << " mm");
+    const geo::Rings ours = toolpath::offset(region, d);
+    const geo::Rings theirs = clipper_offset(region, d, 5000);
+    // Apart from the arcs (within 5 µm) and the noise (0.3 µm): the same region.
+    CHECK(area_mm2(ours) == Approx(area_mm2(theirs)).epsilon(1e-4));
+    CHECK(area_mm2(toolpath::difference(ours, toolpath::offset(theirs, 0.006))) < 1e-6);
+    CHECK(area_mm2(toolpath::difference(theirs, toolpath::offset(ours, 0.006))) < 1e-6);
+  }
+  // A hairline 0.2 µm wide and 1 mm long is narrower than the tolerance: it still grows into a
+  // stadium (1 mm by 0.4 mm with round ends).
+  const geo::Rings hair{{geo::to_point(0, 0), geo::to_point(0.5, 0), geo::Point(geo::to_units(1), 0),
+                         geo::Point(geo::to_units(1), 200), geo::Point(geo::to_units(0.5), 200), geo::Point(0, 200)}};
+  CHECK(area_mm2(toolpath::offset(hair, 0.2)) == Approx(0.4 + std::numbers::pi * 0.04).epsilon(0.01));
+}
+
 TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
   // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
   uint32_t seed = 777;
