@@ -38,7 +38,10 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
 // takes that detour at every closing vertex: on outlines sliced from curved meshes (most
 // vertices) it triples the points and makes every detour cross its neighbours, which was most of
 // the union's time.
-void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings& out) {
+// Where the offset opens by so small a turn that the mitre point lies within `mitre_tol` units
+// outside the arc, that one point is the join (a curved outline's vertices would each leave two
+// points a few µm apart, for every later boolean and offset to carry).
+void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, double mitre_tol, Rings& out) {
   // Consecutive duplicates carry no direction.
   geo::Ring p;
   p.reserve(ring.size());
@@ -94,7 +97,13 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, Rings
       at(v, b.x, b.y);
       continue;
     }
-    // Round join from a to b.
+    // Round join from a to b; a mitre when it lies within mitre_tol of the arc:
+    // |delta| (1 / cos(turn / 2) − 1) ≤ mitre_tol.
+    if (cos_a > 0 && std::abs(delta) <= (mitre_tol + std::abs(delta)) * std::sqrt(0.5 * (1 + cos_a))) {
+      const double f = 1 / (1 + cos_a);
+      at(v, (a.x + b.x) * f, (a.y + b.y) * f);
+      continue;
+    }
     at(v, a.x, a.y);
     if (cos_a < cos_one_step) {
       const double turn = std::atan2(sin_a, cos_a);
@@ -141,7 +150,7 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
       geo::Ring clean = delta > 0 ? simplify(r, kInputTolerance) : r;
       if (clean.empty()) clean = r;
       if (flip) std::reverse(clean.begin(), clean.end());
-      raw_offset(clean, delta, steps_per_rad, raw);
+      raw_offset(clean, delta, steps_per_rad, 0.2 * tol, raw);
     }
   }
   if (raw.empty()) return out;

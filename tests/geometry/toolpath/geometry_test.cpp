@@ -298,6 +298,44 @@ TEST_CASE("clip: growing a region whose border zig-zags by noise agrees with Cli
   CHECK(area_mm2(toolpath::offset(hair, 0.2)) == Approx(0.4 + std::numbers::pi * 0.04).epsilon(0.01));
 }
 
+TEST_CASE("clip: a finely tessellated curve offset where it opens keeps one vertex per vertex, within 1 µm of the arc") {
+  // A disc of 2000 vertices grown by 0.5 mm, and a hole of 2000 in a plate shrunk by 0.5 mm (the
+  // hole widens): each turn of 0.18° is one mitre point (0.6 nm outside the arc), not two points
+  // 1.6 µm apart, so the radius stays exact and later booleans carry half the vertices.
+  const int n = 2000;
+  auto circle = [&](double r, bool ccw) {
+    geo::Ring ring;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * std::numbers::pi * (ccw ? i : n - i) / n;
+      ring.emplace_back(geo::to_units(r * std::cos(t)), geo::to_units(r * std::sin(t)));
+    }
+    return ring;
+  };
+  auto radii = [](const geo::Ring& ring, double& lo, double& hi) {
+    lo = 1e9, hi = 0;
+    for (const auto& q : ring) {
+      const double r = std::hypot(double(q.X), double(q.Y)) * geo::kMmPerUnit;
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+  };
+  const geo::Rings grown = toolpath::offset(geo::Rings{circle(10, true)}, 0.5);
+  REQUIRE(grown.size() == 1);
+  CHECK(grown[0].size() <= static_cast<size_t>(n));
+  double lo = 0, hi = 0;
+  radii(grown[0], lo, hi);
+  // The polygon's own vertices lie on r = 10; its edges 12 µm inside (cos(π/n)).
+  CHECK(lo >= 10.5 - 0.0001);
+  CHECK(hi <= 10.5 + 0.001);
+  const geo::Rings plate{test::rect(-20, -20, 20, 20), circle(5, false)};
+  const geo::Rings shrunk = toolpath::offset(plate, -0.5);
+  REQUIRE(shrunk.size() == 2);
+  const geo::Ring& hole = shrunk[0].size() > 4 ? shrunk[0] : shrunk[1];
+  CHECK(hole.size() <= static_cast<size_t>(n));
+  radii(hole, lo, hi);
+  CHECK(lo >= 5.5 - 0.0001);
+  CHECK(hi <= 5.5 + 0.001);
+}
+
 TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
   // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
   uint32_t seed = 777;
