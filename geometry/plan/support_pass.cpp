@@ -15,6 +15,7 @@
 #include "geometry/support/raft.h"
 #include "geometry/support/tree.h"
 #include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/flow.h"
 
 namespace tranche::plan {
@@ -86,11 +87,15 @@ Status decide_layer(const setup::PrintSetup& S, const ctx::Cascade& C, int L, La
     spec.reach_mm = lp.height * std::tan(angle * std::numbers::pi / 180);
     spec.nozzle_mm = nozzle;
     spec.max_bridge_mm = P[PropId::SupportMaxBridge];
+    d.reach = spec.reach_mm;
+    // An island wholly on the layer below has no overhang at any reach (exact segment and point
+    // tests, much cheaper than the difference; a part narrowing upwards is most of its layers):
+    // the layer below is grown only for the islands that lean out.
+    if (spec.reach_mm >= 0 && nb.covers(-1, ip.shape, toolpath::EdgeGrid(ip.shape))) continue;
     auto it = grown.find(spec.reach_mm);
     if (it == grown.end())  // overhangs need no finer arcs than support (25 µm)
       it = grown.emplace(spec.reach_mm, toolpath::offset_coarse(nb.layer(-1), spec.reach_mm)).first;
     d.overhang = support::overhang(ip.shape, it->second, nb.layer(-1), spec);
-    d.reach = spec.reach_mm;
   }
   return ok_status();
 }

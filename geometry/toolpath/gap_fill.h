@@ -46,7 +46,9 @@ std::vector<VarBead> axis_beads_only(const geo::Rings& region, const BeadSpec& s
 std::vector<VarBead> blob_loops(const geo::Rings& region, const std::vector<VarBead>& beads, const BeadSpec& spec);
 
 // The parts of `island` no bead covers: the island minus `covered` (the loops' and fill's
-// reach), opened so that slivers narrower than `min_width` mm are dropped.
+// reach, under non-zero fill: overlapping areas may be listed side by side, outers
+// counter-clockwise, and count as their union), opened so that slivers narrower than
+// `min_width` mm are dropped.
 geo::Rings uncovered(const geo::Rings& island, const geo::Rings& covered, double min_width);
 
 }  // namespace tranche::toolpath

@@ -71,11 +71,12 @@ std::vector<VarBead> gap_beads(const geo::Rings& island, const std::vector<geo::
                                const std::vector<double>& widths, const geo::Rings& fill_region,
                                const PerimeterSpec& spec) {
   const double h = spec.height;
+  // The beads' areas side by side (outers positive): the difference's non-zero clip unites them.
   geo::Rings covered;
+  auto add = [&](geo::Rings r) { covered.insert(covered.end(), r.begin(), r.end()); };
   for (size_t k = 0; k < centrelines.size(); ++k)
-    if (!centrelines[k].empty())
-      covered = union_of(covered, buffer_loops(centrelines[k], 0.5 * bead_spacing_mm(widths[k], h)));
-  if (!fill_region.empty()) covered = union_of(covered, offset(fill_region, 0.5 * bead_spacing_mm(spec.fill_width, h)));
+    if (!centrelines[k].empty()) add(buffer_loops(centrelines[k], 0.5 * bead_spacing_mm(widths[k], h)));
+  if (!fill_region.empty()) add(offset(fill_region, 0.5 * bead_spacing_mm(spec.fill_width, h)));
   geo::Rings gaps = uncovered(island, covered, spec.min_bead_width);
   if (gaps.empty()) return {};
   BeadSpec bs;

@@ -68,13 +68,31 @@ const EdgeGrid& LayerCache::grid(size_t i) {
   return s.grid;
 }
 
-const LayerCache::Eroded& LayerCache::eroded(size_t i, double mm) {
-  Slot& s = slots_[i];
-  std::lock_guard lock(s.mutex);
+const LayerCache::Eroded& LayerCache::eroded_locked(size_t i, Slot& s, double mm) {
   for (const auto& [d, e] : s.eroded)
     if (d == mm) return *e;
   s.eroded.emplace_back(mm, std::make_unique<Eroded>(erode(material_locked(i, s), mm)));
   return *s.eroded.back().second;
+}
+
+const LayerCache::Eroded& LayerCache::eroded(size_t i, double mm) {
+  Slot& s = slots_[i];
+  std::lock_guard lock(s.mutex);
+  return eroded_locked(i, s, mm);
+}
+
+const geo::Rings& LayerCache::eroded_window(size_t first, int n, double mm) {
+  // Holds layer `first`'s lock while asking the layers above it for theirs: locks are always
+  // taken upwards, so two windows being computed cannot wait for each other.
+  Slot& s = slots_[first];
+  std::lock_guard lock(s.mutex);
+  const auto key = std::make_pair(n, mm);
+  for (const auto& [k, w] : s.windows)
+    if (k == key) return *w;
+  geo::Rings w = eroded_locked(first, s, mm).rings;
+  for (int k = 1; k < n && !w.empty(); ++k) w = intersection(w, eroded(first + static_cast<size_t>(k), mm).rings);
+  s.windows.emplace_back(key, std::make_unique<geo::Rings>(std::move(w)));
+  return *s.windows.back().second;
 }
 
 void LayerCache::release(size_t i) {
@@ -85,6 +103,7 @@ void LayerCache::release(size_t i) {
   geo::Rings().swap(s.material);
   s.grid = EdgeGrid();
   s.eroded.clear();
+  s.windows.clear();
 }
 
 Neighbours::Neighbours(std::span<const geo::Layer> layers, int index, LayerCache* cache)
@@ -126,18 +145,16 @@ const LayerCache::Eroded* Neighbours::eroded(int k, double mm) {
 }
 
 const geo::Rings* Neighbours::all_eroded(int sign, int n, double mm) {
-  sign = sign > 0 ? 1 : -1;
-  auto& v = all_eroded_[std::make_pair(sign, mm)];
-  while (static_cast<int>(v.size()) < n) {
-    const int k = static_cast<int>(v.size()) + 1;
-    const LayerCache::Eroded* e = eroded(sign * k, mm);
-    if (!e || (k > 1 && !v.back()))
-      v.emplace_back();
-    else
-      v.emplace_back(k == 1 ? e->rings : intersection(*v.back(), e->rings));
-  }
-  const auto& r = v[static_cast<size_t>(n - 1)];
-  return r ? &*r : nullptr;
+  if (n < 1) return nullptr;
+  // Layers first .. first + n - 1, from the lowest up.
+  const int first = sign > 0 ? index_ + 1 : index_ - n;
+  if (first < 0 || static_cast<size_t>(first + n) > layers_.size()) return nullptr;
+  if (cache_) return &cache_->eroded_window(static_cast<size_t>(first), n, mm);
+  const auto key = std::make_tuple(first, n, mm);
+  if (auto it = windows_.find(key); it != windows_.end()) return &it->second;
+  geo::Rings w = eroded(first - index_, mm)->rings;
+  for (int k = 1; k < n && !w.empty(); ++k) w = intersection(w, eroded(first + k - index_, mm)->rings);
+  return &windows_.emplace(key, std::move(w)).first->second;
 }
 
 std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, const EdgeGrid& below) {
@@ -229,6 +246,48 @@ geo::Rings drop_small(geo::Rings r, double min_mm2) {
 }
 }  // namespace
 
+geo::Rings solid_region(const geo::Rings& fill, const EdgeGrid& fill_grid, Neighbours& nb, const SolidSpec& spec) {
+  const geo::BBox2 box = bbox(fill);
+  if (spec.shell_mm > 0) {
+    // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
+    // That is the fill outside the neighbours shrunk by shell_mm (a disc lies in all of them iff
+    // it lies in each): each layer is shrunk once for the print (LayerCache), not once per
+    // island and neighbour. Arcs to 25 µm: what is made solid is a band a bead or more wide.
+    // A layer shrunk lies within the layer, so this holds all of the fill a neighbour leaves
+    // uncovered: solid = fill − (∩ above shrunk ∩ ∩ below shrunk), two booleans at most.
+    const double s = spec.shell_mm;
+    const geo::Rings* inner[2];
+    int sides = 0;
+    for (const auto& [sign, n] : {std::pair{1, spec.top_layers}, std::pair{-1, spec.bottom_layers}}) {
+      if (n <= 0) continue;
+      bool covered = true;  // every layer on this side, shrunk, covers the fill (cheap exact tests)
+      for (int k = 1; k <= n && covered; ++k) {
+        const LayerCache::Eroded* e = nb.eroded(sign * k, s);
+        covered = e && covers(e->rings, e->grid, fill, fill_grid);
+      }
+      if (covered) continue;
+      const geo::Rings* w = nb.all_eroded(sign, n, s);
+      if (!w) return fill;  // a neighbour outside the print (a top or the bottom): all solid
+      inner[sides++] = w;
+    }
+    if (sides == 0) return {};
+    if (sides == 1) return difference(fill, near(*inner[0], box));
+    return difference(fill, intersection(near(*inner[0], box), near(*inner[1], box)));
+  }
+  // Solid wherever one of the next top_layers or of the bottom_layers below does not cover
+  // the fill: the union of fill − layer over the layers that do not cover it (cheap exact
+  // tests find those; deep inside the part there are none).
+  geo::Rings solid;
+  auto consider = [&](int k) {
+    if (nb.covers(k, fill, fill_grid)) return;
+    geo::Rings part = difference(fill, near(nb.layer(k), box));
+    solid = solid.empty() ? std::move(part) : union_of(solid, part);
+  };
+  for (int k = 1; k <= spec.top_layers; ++k) consider(k);
+  for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
+  return solid;
+}
+
 std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const SolidSpec& spec) {
   std::vector<FillRegion> out;
   if (fill.empty()) return out;
@@ -239,47 +298,8 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
     return out;
   }
   const bool all_solid = spec.density >= 1.0 - 1e-9;
-  // Solid wherever one of the next top_layers or of the bottom_layers below does not cover
-  // the fill: the union of fill − layer over the layers that do not cover it (cheap exact
-  // tests find those; deep inside the part there are none).
-  EdgeGrid fill_grid(fill);
-  geo::BBox2 box = bbox(fill);
-  geo::Rings solid;
-  bool open_above = true, open_below = true;  // layer ±1 does not cover the fill
-  auto consider = [&](int k) {
-    if (nb.covers(k, fill, fill_grid)) {
-      if (k == 1) open_above = false;
-      if (k == -1) open_below = false;
-      return;
-    }
-    geo::Rings part = difference(fill, near(nb.layer(k), box));
-    solid = solid.empty() ? std::move(part) : union_of(solid, part);
-  };
-  for (int k = 1; k <= spec.top_layers; ++k) consider(k);
-  for (int k = 1; k <= spec.bottom_layers; ++k) consider(-k);
-  if (spec.shell_mm > 0) {
-    // The fill within shell_mm of a neighbour's border lies under (over) its perimeters: solid.
-    // That is the fill outside the neighbours shrunk by shell_mm (a disc lies in all of them iff
-    // it lies in each): each layer is shrunk once for the print (LayerCache), not once per
-    // island and neighbour. Arcs to 25 µm: what is made solid is a band a bead or more wide.
-    const double s = spec.shell_mm;
-    auto shell = [&](int sign, int n) {
-      bool covered = true;
-      for (int k = 1; k <= n && covered; ++k) {
-        const LayerCache::Eroded* e = nb.eroded(sign * k, s);
-        covered = e && covers(e->rings, e->grid, fill, fill_grid);
-      }
-      if (covered) return;
-      const geo::Rings* inner = nb.all_eroded(sign, n, s);
-      if (!inner) return;  // a neighbour outside the print: the fill is solid already
-      geo::Rings part = difference(fill, near(*inner, box));
-      solid = solid.empty() ? std::move(part) : union_of(solid, part);
-    };
-    if (spec.top_layers > 0) shell(1, spec.top_layers);
-    if (spec.bottom_layers > 0) shell(-1, spec.bottom_layers);
-  }
-  if (spec.top_layers <= 0) open_above = false;
-  if (spec.bottom_layers <= 0) open_below = false;
+  const EdgeGrid fill_grid(fill);
+  geo::Rings solid = solid_region(fill, fill_grid, nb, spec);
   // Strips narrower than half a bead (steep slopes) are left to the sparse fill.
   geo::Rings core = drop_small(offset(drop_small(std::move(solid), tiny), -0.25 * w), 0.05 * tiny);
   if (core.empty() && !all_solid) {
@@ -291,8 +311,11 @@ std::vector<FillRegion> split_fill(const geo::Rings& fill, Neighbours& nb, const
   geo::Rings skin = offset(core, 0.25 * w);
   geo::BBox2 sbox = bbox(skin);
   geo::Rings bridge, top;
-  if (open_below && !skin.empty()) bridge = drop_small(difference(skin, near(nb.layer(-1), sbox)), tiny);
-  if (open_above && !skin.empty()) {
+  // Bridges where the layer below does not cover the fill, tops where the one above does not.
+  const bool open_below = spec.bottom_layers > 0 && !skin.empty() && !nb.covers(-1, fill, fill_grid);
+  const bool open_above = spec.top_layers > 0 && !skin.empty() && !nb.covers(1, fill, fill_grid);
+  if (open_below) bridge = drop_small(difference(skin, near(nb.layer(-1), sbox)), tiny);
+  if (open_above) {
     geo::Rings clip = near(nb.layer(1), sbox);
     clip.insert(clip.end(), bridge.begin(), bridge.end());  // non-zero union of both as the clip
     top = drop_small(difference(skin, clip), tiny);

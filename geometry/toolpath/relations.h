@@ -6,8 +6,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <span>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -41,6 +41,11 @@ class LayerCache {
     EdgeGrid grid;
   };
   const Eroded& eroded(size_t i, double mm);
+  // The intersection of layers first .. first + n - 1 (n ≥ 1, all in the print), each shrunk by
+  // `mm`, intersected in that order: a layer's window above is the window below of the layer n + 1
+  // higher, so each is computed once for the print instead of once by each. Held with layer
+  // `first` (released with it).
+  const geo::Rings& eroded_window(size_t first, int n, double mm);
   // Frees what layer i holds (asked again, it is computed again).
   void release(size_t i);
 
@@ -51,8 +56,11 @@ class LayerCache {
     geo::Rings material;
     EdgeGrid grid;
     std::vector<std::pair<double, std::unique_ptr<Eroded>>> eroded;  // by depth (one in practice)
+    // (n, depth) → the window of n layers from this one (see eroded_window).
+    std::vector<std::pair<std::pair<int, double>, std::unique_ptr<geo::Rings>>> windows;
   };
   const geo::Rings& material_locked(size_t i, Slot& s);
+  const Eroded& eroded_locked(size_t i, Slot& s, double mm);
   std::span<const geo::Layer> layers_;
   std::unique_ptr<Slot[]> slots_;
 };
@@ -78,7 +86,8 @@ class Neighbours {
   const LayerCache::Eroded* eroded(int k, double mm);
   // The intersection of the `n` nearest layers above (sign > 0) or below (sign < 0), each shrunk
   // by `mm`: where a spot is at least `mm` inside all of them. Null when one of them is outside
-  // the print (a top or the bed-side bottom).
+  // the print (a top or the bed-side bottom). Intersected from the lowest layer up, with or
+  // without a cache (the same rings either way).
   const geo::Rings* all_eroded(int sign, int n, double mm);
   // Material below this layer as an edge grid (overhang, bridges).
   const EdgeGrid& below_grid() { return grid(-1); }
@@ -95,9 +104,8 @@ class Neighbours {
   std::map<int, geo::Rings> material_;
   std::map<int, EdgeGrid> grids_;
   std::map<std::pair<int, double>, LayerCache::Eroded> eroded_;  // without a cache
-  // (sign, mm) → [n-1] = intersection of the n nearest eroded layers on that side (empty
-  // optional: one is outside the print).
-  std::map<std::pair<int, double>, std::vector<std::optional<geo::Rings>>> all_eroded_;
+  // Without a cache: (first layer index, n, mm) → the window (LayerCache::eroded_window).
+  std::map<std::tuple<int, int, double>, geo::Rings> windows_;
 };
 
 // For each piece of the polyline `pts`, the fraction of a bead `width_mm` wide along it that
@@ -135,6 +143,12 @@ struct SolidSpec {
   // thick as the perimeters (the fill that supports, or rests on, a neighbour's perimeters).
   double shell_mm = 0;
 };
+
+// The part of `fill` (one island's fill region, `fill_grid` its grid) that one of the next
+// top_layers layers or of the bottom_layers below leaves uncovered, or (shell_mm > 0) that lies
+// within shell_mm of one of their borders: split_fill's solid fill before strips narrower than
+// half a bead are dropped and skins grown.
+geo::Rings solid_region(const geo::Rings& fill, const EdgeGrid& fill_grid, Neighbours& nb, const SolidSpec& spec);
 
 // Splits `fill` (one island's fill region) into bridge, bottom, top, internal solid and sparse
 // regions: top = not covered by the layer above; solid = not covered by all of the next

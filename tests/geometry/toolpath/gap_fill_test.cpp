@@ -316,3 +316,19 @@ TEST_CASE("gap fill: random thin shapes give sane beads that cover them without 
   CHECK(worst_outside < 0.05);
   CHECK(worst_overlap < 0.3);
 }
+
+TEST_CASE("gap fill: uncovered counts overlapping covered areas listed side by side as their union") {
+  // The loops' reach and the fill's overlap; make_perimeters lists them without uniting them
+  // first. A 10 × 4 mm island, two overlapping bars and a disc-like square crossing both.
+  const geo::Rings island{test::rect(0, 0, 10, 4)};
+  const geo::Rings a{test::rect(-1, -1, 6, 2.5)}, b{test::rect(4, 1, 11, 5)}, c{test::rect(2, 0.5, 8, 3.5)};
+  geo::Rings side_by_side = a;
+  side_by_side.insert(side_by_side.end(), b.begin(), b.end());
+  side_by_side.insert(side_by_side.end(), c.begin(), c.end());
+  const geo::Rings united = union_of(union_of(a, b), c);
+  const geo::Rings got = uncovered(island, side_by_side, 0.1), want = uncovered(island, united, 0.1);
+  CHECK(area_mm2(want) == Approx(2 * 1.5 + 4 * 1).epsilon(1e-3));  // what the test looks at is there
+  CHECK(area_mm2(got) == Approx(area_mm2(want)).epsilon(1e-9));
+  CHECK(area_mm2(difference(got, want)) < 1e-9);
+  CHECK(area_mm2(difference(want, got)) < 1e-9);
+}

@@ -340,6 +340,75 @@ TEST_CASE("clip: offsets agree with Clipper's on polygons with corners: stars, c
   CHECK(compared == 400);
 }
 
+TEST_CASE("clip: growing a region whose border zig-zags by noise agrees with Clipper's, and a hairline still grows") {
+  // Where two nearly equal borders cross (a fill and a shrunk neighbour), a boolean leaves a run
+  // of vertices a micrometre or two apart turning back and forth by a fraction of one: offset()
+  // drops those within 0.5 µm of their chord before growing. The region grown must not change.
+  geo::Ring ring{geo::to_point(20, 0), geo::to_point(20, 5)};
+  for (int i = 0; i <= 10000; ++i)  // the top: 20 mm in 2 µm steps, ±0.3 µm of noise
+    ring.push_back(geo::Point(geo::to_units(20 - 0.002 * i), geo::to_units(5) + (i % 2 ? 300 : -300)));
+  ring.push_back(geo::to_point(0, 0));
+  const geo::Rings region{ring};
+  REQUIRE(area_mm2(region) == Approx(100).epsilon(1e-4));
+  for (double d : {0.1125, 0.5625, 2.0}) {
+    INFO("grown by " << d << " mm");
+    const geo::Rings ours = toolpath::offset(region, d);
+    const geo::Rings theirs = clipper_offset(region, d, 5000);
+    // Apart from the arcs (within 5 µm) and the noise (0.3 µm): the same region. Its area is the
+    // rectangle's grown with round corners (ClipperOffset's is up to 4 µm short along the noisy
+    // top: its arcs at every noisy vertex cut in).
+    // The arcs' chords cut in by at most the 5 µm tolerance along their length, the noise 0.3 µm
+    // along the top.
+    const double exact = 100 + 2 * d * 25 + std::numbers::pi * d * d;
+    CHECK(std::abs(area_mm2(ours) - exact) <= 2 * std::numbers::pi * d * 0.005 + 20 * 0.0003);
+    CHECK(area_mm2(toolpath::difference(ours, toolpath::offset(theirs, 0.006))) < 1e-6);
+    CHECK(area_mm2(toolpath::difference(theirs, toolpath::offset(ours, 0.006))) < 1e-6);
+  }
+  // A hairline 0.2 µm wide and 1 mm long is narrower than the tolerance: it still grows into a
+  // stadium (1 mm by 0.4 mm with round ends).
+  const geo::Rings hair{{geo::to_point(0, 0), geo::to_point(0.5, 0), geo::Point(geo::to_units(1), 0),
+                         geo::Point(geo::to_units(1), 200), geo::Point(geo::to_units(0.5), 200), geo::Point(0, 200)}};
+  CHECK(area_mm2(toolpath::offset(hair, 0.2)) == Approx(0.4 + std::numbers::pi * 0.04).epsilon(0.01));
+}
+
+TEST_CASE("clip: a finely tessellated curve offset where it opens keeps one vertex per vertex, within 1 µm of the arc") {
+  // A disc of 2000 vertices grown by 0.5 mm, and a hole of 2000 in a plate shrunk by 0.5 mm (the
+  // hole widens): each turn of 0.18° is one mitre point (0.6 nm outside the arc), not two points
+  // 1.6 µm apart, so the radius stays exact and later booleans carry half the vertices.
+  const int n = 2000;
+  auto circle = [&](double r, bool ccw) {
+    geo::Ring ring;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * std::numbers::pi * (ccw ? i : n - i) / n;
+      ring.emplace_back(geo::to_units(r * std::cos(t)), geo::to_units(r * std::sin(t)));
+    }
+    return ring;
+  };
+  auto radii = [](const geo::Ring& ring, double& lo, double& hi) {
+    lo = 1e9, hi = 0;
+    for (const auto& q : ring) {
+      const double r = std::hypot(double(q.X), double(q.Y)) * geo::kMmPerUnit;
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+  };
+  const geo::Rings grown = toolpath::offset(geo::Rings{circle(10, true)}, 0.5);
+  REQUIRE(grown.size() == 1);
+  CHECK(grown[0].size() <= static_cast<size_t>(n));
+  double lo = 0, hi = 0;
+  radii(grown[0], lo, hi);
+  // The polygon's own vertices lie on r = 10; its edges 12 µm inside (cos(π/n)).
+  CHECK(lo >= 10.5 - 0.0001);
+  CHECK(hi <= 10.5 + 0.001);
+  const geo::Rings plate{test::rect(-20, -20, 20, 20), circle(5, false)};
+  const geo::Rings shrunk = toolpath::offset(plate, -0.5);
+  REQUIRE(shrunk.size() == 2);
+  const geo::Ring& hole = shrunk[0].size() > 4 ? shrunk[0] : shrunk[1];
+  CHECK(hole.size() <= static_cast<size_t>(n));
+  radii(hole, lo, hi);
+  CHECK(lo >= 5.5 - 0.0001);
+  CHECK(hi <= 5.5 + 0.001);
+}
+
 TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
   // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
   uint32_t seed = 777;

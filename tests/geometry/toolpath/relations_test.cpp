@@ -221,3 +221,67 @@ TEST_CASE("relations: a LayerCache shared by threads gives what each layer compu
   for (const auto& a : alone) solid += a[1];
   CHECK(solid > 10);
 }
+
+TEST_CASE("relations: the solid fill with the vertical shell is the union of what each neighbour leaves, from two booleans") {
+  // A wobbling, swelling and shrinking disc (many vertices, every slope) with an off-centre hole:
+  // each layer's solid_region against the definition, the union over the layers above and below
+  // of fill − layer and of fill − (the side's layers shrunk, intersected), near the bottom and
+  // the top too (a side outside the print: all solid), with and without a shared LayerCache.
+  const int count = 40;
+  auto disc = [](double cx, double cy, double r, bool ccw) {
+    geo::Ring ring;
+    for (int k = 0; k < 180; ++k) {
+      const double a = 2 * M_PI * k / 180;
+      const double rr = r * (1 + 0.04 * std::sin(7 * a));
+      ring.push_back(geo::to_point(cx + rr * std::cos(a), cy + rr * std::sin(a)));
+    }
+    if (!ccw) ClipperLib::ReversePath(ring);
+    return ring;
+  };
+  std::vector<geo::Layer> layers = test::stack(count, 0.2, geo::Polygon{test::rect(0, 0, 1, 1), {}});
+  for (int i = 0; i < count; ++i) {
+    auto& shape = layers[static_cast<size_t>(i)].islands[0].shape;
+    const double r = 10 + 3 * std::sin(i * 0.25);
+    shape.outer = disc(15 + 0.15 * i, 15, r, true);
+    shape.holes = {disc(15 + 0.1 * i, 14, 2 + 0.08 * i, false)};
+  }
+  SolidSpec spec;
+  spec.shell_mm = 0.6;
+  auto definition = [&](int i, const geo::Rings& fill) {
+    geo::Rings solid;
+    for (const auto& [sign, n] : {std::pair{1, spec.top_layers}, std::pair{-1, spec.bottom_layers}}) {
+      geo::Rings window;
+      bool outside = false;
+      for (int k = 1; k <= n; ++k) {
+        const int j = i + sign * k;
+        if (j < 0 || j >= count) {
+          outside = true;
+          break;
+        }
+        const geo::Rings m = material(layers[static_cast<size_t>(j)]);
+        solid = union_of(solid, difference(fill, m));
+        const geo::Rings e = offset_coarse(m, -spec.shell_mm);
+        window = k == 1 ? e : intersection(window, e);
+      }
+      solid = union_of(solid, outside ? fill : difference(fill, window));
+    }
+    return solid;
+  };
+  LayerCache cache(layers);
+  double total = 0;
+  for (int i = 1; i < count; ++i) {
+    INFO("layer " << i);
+    const geo::Rings fill = offset(material(layers[static_cast<size_t>(i)]), -0.9);
+    const EdgeGrid grid(fill);
+    Neighbours alone(layers, i), shared(layers, i, &cache);
+    const geo::Rings got = solid_region(fill, grid, alone, spec);
+    const geo::Rings want = definition(i, fill);
+    const double a = area_mm2(want);
+    total += a;
+    CHECK(area_mm2(got) == Approx(a).epsilon(1e-6));
+    CHECK(area_mm2(difference(got, want)) < 1e-4);
+    CHECK(area_mm2(difference(want, got)) < 1e-4);
+    CHECK(solid_region(fill, grid, shared, spec) == got);
+  }
+  CHECK(total > 100);  // the shell made a good part of the fill solid: the comparison saw it
+}
