@@ -237,6 +237,14 @@ void build_pattern(IslandPlan& ip, Nest& nest, const RegionFill& f, schema::Infi
   ps.z_mm = layer ? layer->z_slice() : 0.0;
   ps.artificial_inset_mm = f.fs.artificial_inset_mm;
   ps.link_max_mm = f.fs.link_max_mm;
+  // Gyroid: joined and anchored along the border as PrusaSlicer's gyroid is by default (links up
+  // to infill_anchor_max = 50 mm, free ends anchored by infill_anchor = 600 % of the width: 2.7
+  // mm at 0.45), so that it lays what PrusaSlicer's does at the same density (on a plate with
+  // holes, whose lines end at every hole, the links and anchors are a third of the infill).
+  if (pattern == schema::InfillPattern::Gyroid) {
+    ps.link_max_mm = std::max(ps.link_max_mm, 50.0);
+    ps.anchor_mm = 6 * f.w;
+  }
   const toolpath::FillShape shape = toolpath::region_shape(f.region.rings, f.borders, 0.25 * f.w);
   if (pattern == schema::InfillPattern::Lightning) {
     toolpath::LightningSpec ls;

@@ -26,6 +26,13 @@ constexpr double kPi = std::numbers::pi;
 // Average length of the gyroid's horizontal section per unit area, times its period (measured
 // over 32 heights of one period: 2.451; PrusaSlicer's FillGyroid uses 2.44).
 constexpr double kGyroidLength = 2.45;
+// The gyroid's period as PrusaSlicer's FillGyroid's, 2π·spacing/(2.44·density) (its DensityAdjust),
+// so that a density lays the plastic it does there: 2.45 · 2.44 / 2π = 0.951 × density (a
+// period of 2.45·spacing/density, density itself, laid 5 % more than PrusaSlicer's gyroid).
+constexpr double kGyroidDensityAdjust = 2.44;
+double gyroid_period(double spacing, double density) {
+  return 2 * kPi * spacing / (kGyroidDensityAdjust * density);
+}
 
 // Rounded to the nearest unit (half away from zero, as llround, without its cost in the
 // gyroid's thousands of points per layer).
@@ -342,7 +349,9 @@ std::vector<FillPath> clip_and_link(const geo::Rings& lines, const FillShape& sh
   const EdgeGrid grid(region);
   uint32_t lone = static_cast<uint32_t>(rings.size());  // ends on no edge: never linked
   std::vector<Poly> polys = clip_lines(lines, region, grid, lone, pitch_mm * geo::kUnitsPerMm);
-  polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * geo::kUnitsPerMm);
+  const double u = geo::kUnitsPerMm;
+  polys = zigzag_detail::link_along_border(std::move(polys), rings, spec.link_max_mm * u, true,
+                                          spec.anchor_mm * u, 0.5 * spec.spacing_mm * u);
   return zigzag_detail::to_fill_paths(polys, [](UV p) { return to_pt(p.u, p.v); });
 }
 
@@ -451,6 +460,7 @@ double honeycomb_apothem(double spacing, double density) { return spacing / std:
 double plastic_fraction(schema::InfillPattern pattern, double density) {
   if (!(density > 0)) return 0;
   const double rho = std::min(density, 1.0);
+  if (pattern == InfillPattern::Gyroid) return rho * kGyroidLength / gyroid_period(1.0, 1.0);
   return pattern == InfillPattern::Honeycomb ? rho * (4 - rho) / 3 : rho;
 }
 
@@ -481,7 +491,7 @@ geo::Rings pattern_lines(const PatternSpec& spec, double x0, double y0, double x
       honeycomb(out, angle, 2 * honeycomb_apothem(s, rho) / std::sqrt(3.0), s, x0, y0, x1, y1);
       break;
     case InfillPattern::Gyroid:
-      gyroid(out, angle, kGyroidLength * s / rho, spec.z_mm, x0, y0, x1, y1);
+      gyroid(out, angle, gyroid_period(s, rho), spec.z_mm, x0, y0, x1, y1);
       break;
     case InfillPattern::Zigzag:
     case InfillPattern::Concentric:

@@ -7,8 +7,8 @@
 //
 // Density: the length of line per mm² of region is density / spacing (spacing: the distance of
 // solid lines, toolpath::bead_spacing_mm), so a pattern extrudes about density × area × height
-// of plastic whatever its shape, but for honeycomb, which keeps PrusaSlicer's meaning of the
-// density (ρ(4 − ρ)/3 of plastic, 0.253 at 20 %: plastic_fraction):
+// of plastic whatever its shape, but for honeycomb and gyroid, which keep PrusaSlicer's meaning of
+// the density (honeycomb ρ(4 − ρ)/3 of plastic, 0.253 at 20 %; gyroid 0.951·ρ: plastic_fraction):
 //   grid        two sets of lines, at angle and angle + 90°, each 2·spacing/density apart;
 //   triangles   three sets at angle, +60°, +120°, each 3·spacing/density apart, all through the
 //               nodes of one triangular lattice;
@@ -21,8 +21,11 @@
 //               doubled edges lay ρ(4 − ρ)/3 of plastic (about 4/3 × density when sparse, a
 //               whole layer at 100 %);
 //   gyroid      the section at z of the gyroid sin x cos y + sin y cos z + sin z cos x = 0 with
-//               period 2.45·spacing/density (its section has 2.45/period of line per mm²,
-//               averaged over z: from −6 % to +9 % on single layers), sampled to 20 µm;
+//               PrusaSlicer's period 2π·spacing/(2.44·density) (its section has 2.45/period of
+//               line per mm², averaged over z, from −6 % to +9 % on single layers: 0.951·density
+//               of plastic), chords within 50 µm; its lines are joined by links up to 50 mm and
+//               free ends anchored 6 widths along the border (PatternSpec::anchor_mm) by the
+//               plan (island_content.cpp), as PrusaSlicer's infill_anchor_max / infill_anchor;
 //   concentric  loops inside the region's border, spacing/density apart, the first one half a
 //               spacing from the border (touching the walls, as PrusaSlicer's), each joined to
 //               the next by a short crossing when it stays inside the region.
@@ -47,10 +50,13 @@ struct PatternSpec {
   // solid one), as the zig-zag's do (FillSpec::artificial_inset_mm).
   double artificial_inset_mm = 0.2;
   double link_max_mm = 0;  // longest link along the border (mm; 0: none)
+  // Ends left unlinked run on along the border this far (mm; 0: none), as PrusaSlicer's infill
+  // anchors, stopping half a spacing short of the next end, link or anchor.
+  double anchor_mm = 0;
 };
 
 // The share of a region's area that `pattern` at `density` covers with bead (0 to 1): density,
-// but density × (4 − density) / 3 for honeycomb (see above).
+// but density × (4 − density) / 3 for honeycomb and 0.951 × density for gyroid (see above).
 double plastic_fraction(schema::InfillPattern pattern, double density);
 
 // The paths of `pattern` over `shape` (zigzag and lightning: none; see above for the others).

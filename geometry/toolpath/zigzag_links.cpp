@@ -39,6 +39,7 @@ class BorderLinker {
       : index_(index), rings_(rings), limit_(limit) {}
 
   std::vector<Poly> chain(std::vector<Poly> polys);
+  void anchor(std::vector<Poly>& chains, double length, double clearance);
 
  private:
   void measure_rings();
@@ -46,10 +47,11 @@ class BorderLinker {
   double arc(uint32_t r, uint32_t edge, UV x) const;
   Stretch stretch(uint32_t r, double sa, double sb, bool forward, bool whole) const;
   bool overlaps(uint32_t r, const Stretch& x) const;
-  double walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
-              Stretch& st) const;
+  double walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds, Stretch& st,
+              double bound) const;
   Link best_link(const Poly& cur, const std::vector<Poly>& polys, const std::vector<char>& used) const;
   void index_ends(const std::vector<Poly>& polys);
+  std::vector<UV> run_on(const End& e, bool forward, double len, std::vector<Border>& kinds) const;
 
   // The polylines' ends on a hash grid of cells `limit_` wide (when that is fine enough to
   // help): a link is at most limit_ long, so its other end lies in the 3 × 3 cells round its
@@ -119,11 +121,16 @@ bool BorderLinker::overlaps(uint32_t r, const Stretch& x) const {
 // Links along the border: the walk from `from` to `b` on their common ring, the shorter way
 // round of those that run over no other link, if it is at most `limit` units long (points
 // after `from`, up to and including `b`; `st`: the stretch it covers). Returns its length.
+// Walks longer than `bound` (the best link found so far) are not walked: their length along the
+// ring, from the rings' measured arcs, tells it first. (The walk's own sum differs from that by
+// rounding only; kSlack keeps every walk that could tie with the bound.)
 double BorderLinker::walk(const End& from, const End& b, std::vector<UV>& pts, std::vector<Border>& kinds,
-                          Stretch& st) const {
+                          Stretch& st, double bound) const {
   const double limit = limit_;
-  constexpr double kNo = 1e300;
-  if (from.ring != b.ring || std::hypot(b.p.u - from.p.u, b.p.v - from.p.v) > limit) return kNo;
+  constexpr double kNo = 1e300, kSlack = 1e4;  // 10 µm
+  if (from.ring != b.ring) return kNo;
+  const double chord = std::hypot(b.p.u - from.p.u, b.p.v - from.p.v);
+  if (chord > limit || chord > bound + kSlack) return kNo;
   const uint32_t r = from.ring;
   const Ring2& ring = rings_[r];
   const uint32_t n = static_cast<uint32_t>(ring.pts.size());
@@ -135,7 +142,7 @@ double BorderLinker::walk(const End& from, const End& b, std::vector<UV>& pts, s
     uint32_t count = direct ? 0 : steps(n, from.edge, b.edge, dir > 0);
     if (!direct && count == 0) count = n;  // same edge, the wrong way: all the way round
     Stretch here = stretch(r, sa, sb, dir > 0, count == n);
-    if (here.len > limit || overlaps(r, here)) continue;
+    if (here.len > limit || here.len > std::min(bound, best) + kSlack || overlaps(r, here)) continue;
     std::vector<UV> p;
     std::vector<Border> k;
     double len = 0;
@@ -178,7 +185,7 @@ Link BorderLinker::best_link(const Poly& cur, const std::vector<Poly>& polys,
   std::vector<Border> tk;
   Stretch ts{0, 0};
   auto consider = [&](size_t j, bool at_end) {
-    double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts);
+    double l = walk(cur.last, at_end ? polys[j].last : polys[j].first, tp, tk, ts, best.len);
     if (l < best.len || (l == best.len && l < 1e300 && (j < best.poly || (j == best.poly && !at_end && best.at_end))))
       best = {l, j, at_end, std::move(tp), std::move(tk), ts};
   };
@@ -202,8 +209,8 @@ Link BorderLinker::best_link(const Poly& cur, const std::vector<Poly>& polys,
 
 // Polylines joined end to start by links along the border, greedily from each unused one.
 std::vector<Poly> BorderLinker::chain(std::vector<Poly> polys) {
-  if (!(limit_ > 0 && polys.size() > 1)) return polys;
   measure_rings();
+  if (!(limit_ > 0 && polys.size() > 1)) return polys;
   index_ends(polys);
   std::vector<Poly> chains;
   std::vector<char> used(polys.size(), 0);
@@ -236,11 +243,92 @@ std::vector<Poly> BorderLinker::chain(std::vector<Poly> polys) {
   return chains;
 }
 
+// The points `len` along the ring from end e (forward: increasing vertex indices), the last one
+// `len` from e; `kinds`: the border kind of each piece.
+std::vector<UV> BorderLinker::run_on(const End& e, bool forward, double len,
+                                     std::vector<Border>& kinds) const {
+  const Ring2& ring = rings_[e.ring];
+  const uint32_t n = static_cast<uint32_t>(ring.pts.size());
+  std::vector<UV> pts;
+  UV at = e.p;
+  double left = len;
+  walk_ring(n, e.edge, n, forward, [&](uint32_t v, uint32_t edge) {
+    const UV to = ring.pts[v];
+    const double d = std::hypot(to.u - at.u, to.v - at.v);
+    kinds.push_back(border_of(ring.kinds[edge]));
+    if (d >= left) {
+      const double t = left / d;
+      pts.push_back({at.u + t * (to.u - at.u), at.v + t * (to.v - at.v)});
+      left = 0;
+      return false;
+    }
+    pts.push_back(to);
+    left -= d;
+    at = to;
+    return true;
+  });
+  return pts;
+}
+
+// Anchors: each chain end on a ring runs on along it, the way with more free room (to the next
+// end, link or anchor on the ring), by up to `length` and `clearance` short of that obstacle.
+void BorderLinker::anchor(std::vector<Poly>& chains, double length, double clearance) {
+  if (!(length > 0) || cum_.size() != rings_.size()) return;
+  // Per ring: the arc position of every chain end (index × 2 + 1 for a last point).
+  std::vector<std::vector<std::pair<double, size_t>>> ends(rings_.size());
+  for (size_t c = 0; c < chains.size(); ++c)
+    for (int last = 0; last < 2; ++last) {
+      const End& e = last ? chains[c].last : chains[c].first;
+      if (e.ring < rings_.size()) ends[e.ring].push_back({arc(e.ring, e.edge, e.p), 2 * c + last});
+    }
+  for (size_t c = 0; c < chains.size(); ++c)
+    for (int last = 0; last < 2; ++last) {
+      Poly& P = chains[c];
+      const End e = last ? P.last : P.first;
+      if (e.ring >= rings_.size() || rings_[e.ring].pts.size() < 2) continue;
+      const uint32_t r = e.ring;
+      const double L = cum_[r].back(), s = arc(r, e.edge, e.p);
+      if (!(L > 0)) continue;
+      // Free room forward (increasing arc) and backward from s.
+      double fwd = L, back = L;
+      for (const auto& [a, id] : ends[r]) {
+        if (id == 2 * c + last) continue;
+        fwd = std::min(fwd, std::fmod(a - s + 2 * L, L));
+        back = std::min(back, std::fmod(s - a + 2 * L, L));
+      }
+      for (const Stretch& st : covered_[r]) {
+        const double into = std::fmod(s - st.start + 2 * L, L);
+        if (into < st.len) fwd = back = 0;  // on a link already
+        fwd = std::min(fwd, std::fmod(st.start - s + 2 * L, L));
+        back = std::min(back, std::fmod(s - (st.start + st.len) + 3 * L, L));
+      }
+      const bool forward = fwd >= back;
+      const double len = std::min(length, (forward ? fwd : back) - clearance);
+      if (!(len > 1e3)) continue;  // a micrometre
+      std::vector<Border> kinds;
+      std::vector<UV> pts = run_on(e, forward, len, kinds);
+      if (pts.empty()) continue;
+      covered_[r].push_back(forward ? Stretch{s, len} : Stretch{std::fmod(s - len + L, L), len});
+      if (last) {
+        P.pts.insert(P.pts.end(), pts.begin(), pts.end());
+        P.border.insert(P.border.end(), kinds.begin(), kinds.end());
+      } else {  // walked away from the first point: put in front, turned round
+        std::reverse(pts.begin(), pts.end());
+        std::reverse(kinds.begin(), kinds.end());
+        P.pts.insert(P.pts.begin(), pts.begin(), pts.end());
+        P.border.insert(P.border.begin(), kinds.begin(), kinds.end());
+      }
+    }
+}
+
 }  // namespace
 
 std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit,
-                                    bool index) {
-  return BorderLinker(rings, limit, index).chain(std::move(polys));
+                                    bool index, double anchor, double clearance) {
+  BorderLinker linker(rings, limit, index);
+  std::vector<Poly> chains = linker.chain(std::move(polys));
+  linker.anchor(chains, anchor, clearance);
+  return chains;
 }
 
 }  // namespace tranche::toolpath::zigzag_detail

@@ -61,8 +61,11 @@ struct Poly {
 // (FillSpec::link_max_mm), greedily from each polyline in turn; `polys` unchanged when limit <= 0.
 // With many polylines (more than 64) their ends are looked up on a grid of cells `limit` wide:
 // the same links as trying every end (index = false, for tests), without the quadratic cost.
+// With anchor > 0, each end left free on a ring then runs on along it by up to `anchor` units
+// (PrusaSlicer's infill anchors), the way round with more room, stopping `clearance` short of
+// any other end, link or anchor on that ring.
 std::vector<Poly> link_along_border(std::vector<Poly> polys, const std::vector<Ring2>& rings, double limit,
-                                    bool index = true);
+                                    bool index = true, double anchor = 0, double clearance = 0);
 
 // Polylines to paths, each point through `to_point` (UV -> bed point), points that round
 // together merged; paths of fewer than two points dropped.

@@ -342,3 +342,54 @@ TEST_CASE("zigzag links: the grid of ends links as trying every end does") {
     }
   }
 }
+
+// Anchors (PrusaSlicer's infill_anchor): an end no link reaches runs on along the border by the
+// anchor's length, the way with more room, and stops the clearance short of another end. On a
+// 20 mm square, two chords at x = 5 and x = 6 mm (links up to 0.5 mm: none), anchors of 3 mm,
+// clearance 0.25 mm: each end at x = 5 has 1 mm to its neighbour one way and 5 mm to the corner
+// and beyond the other, so it runs 3 mm towards x = 2; those at x = 6 run 3 mm towards x = 9.
+TEST_CASE("zigzag links: free ends are anchored along the border, short of other ends") {
+  using namespace tranche::toolpath::zigzag_detail;
+  const double u = geo::kUnitsPerMm;
+  Ring2 sq;
+  sq.pts = {{0, 0}, {20 * u, 0}, {20 * u, 20 * u}, {0, 20 * u}};
+  sq.kinds.assign(4, geo::EdgeKind::Real);
+  auto chord = [&](double x) {
+    Poly p;
+    p.pts = {{x * u, 0}, {x * u, 20 * u}};
+    p.border = {schema::Border::None};
+    p.first = End{0, 0, p.pts[0]};
+    p.last = End{0, 2, p.pts[1]};
+    return p;
+  };
+  const std::vector<Poly> polys{chord(5), chord(6)};
+  // Without anchors: the chords as they were (no link is short enough).
+  const auto plain = link_along_border(polys, {sq}, 0.5 * u);
+  REQUIRE(plain.size() == 2);
+  CHECK(plain[0].pts.size() == 2);
+  const auto anchored = link_along_border(polys, {sq}, 0.5 * u, true, 3 * u, 0.25 * u);
+  REQUIRE(anchored.size() == 2);
+  for (size_t k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    const auto& P = anchored[k];
+    REQUIRE(P.pts.size() == 4);
+    REQUIRE(P.border.size() == 3);
+    CHECK(P.border.front() == schema::Border::Real);
+    CHECK(P.border.back() == schema::Border::Real);
+    const double x = k == 0 ? 5 : 6, away = k == 0 ? -3 : 3;
+    // First point: 3 mm along the bottom edge; last: 3 mm along the top one.
+    CHECK(P.pts.front().u == doctest::Approx((x + away) * u));
+    CHECK(P.pts.front().v == doctest::Approx(0));
+    CHECK(P.pts[1].u == doctest::Approx(x * u));
+    CHECK(P.pts.back().u == doctest::Approx((x + away) * u));
+    CHECK(P.pts.back().v == doctest::Approx(20 * u));
+  }
+  // Three chords 1 mm apart: the middle one's ends have 1 mm each way, less the clearance, less
+  // where its neighbours' anchors went (away from it): 0.75 mm.
+  const std::vector<Poly> three{chord(5), chord(6), chord(7)};
+  const auto mid = link_along_border(three, {sq}, 0.5 * u, true, 3 * u, 0.25 * u);
+  REQUIRE(mid.size() == 3);
+  REQUIRE(mid[1].pts.size() == 4);
+  CHECK(std::abs(mid[1].pts.front().u - 6 * u) == doctest::Approx(0.75 * u));
+  CHECK(std::abs(mid[1].pts.back().u - 6 * u) == doctest::Approx(0.75 * u));
+}
