@@ -31,6 +31,18 @@ Rings drop_specks(Rings r, double bead_mm) {
   return r;
 }
 
+// Each ring started at its lowest vertex (least y, then x): simplify() keeps a ring's first
+// vertex, so the same outline simplifies the same whichever boolean last wrote it.
+Rings canonical(Rings r) {
+  for (geo::Ring& ring : r) {
+    auto low = std::min_element(ring.begin(), ring.end(), [](const geo::Point& a, const geo::Point& b) {
+      return a.Y != b.Y ? a.Y < b.Y : a.X < b.X;
+    });
+    std::rotate(ring.begin(), low, ring.end());
+  }
+  return r;
+}
+
 // Union of the part below each layer (0..k), for bed-only contacts: computed only when one asks.
 std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
   std::vector<Rings> out(layers.size());
@@ -40,6 +52,48 @@ std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
     out[k] = acc;
   }
   return out;
+}
+
+// a − b, Clipper run only on the rings of `a` whose box meets the box of a ring of `b`: a ring
+// whose box meets none of them lies outside b and crosses none of its rings, so the difference
+// would give it back as it is. `a` must be a boolean's result (rings that do not cross, under
+// non-zero fill): a hole that meets nothing of b stays aside even when its outer is cut, and
+// still cancels that outer inside it (what b cuts lies outside the hole's box).
+Rings difference_near(const Rings& a, const Rings& b) {
+  if (a.empty() || b.empty()) return a;
+  std::vector<geo::BBox2> boxes;
+  boxes.reserve(b.size());
+  for (const geo::Ring& r : b) boxes.push_back(geo::bbox(r));
+  Rings touched, out;
+  for (const geo::Ring& r : a) {
+    const geo::BBox2 ra = geo::bbox(r);
+    const bool meets = std::any_of(boxes.begin(), boxes.end(), [&](const geo::BBox2& x) {
+      return !(x.max_x < ra.min_x || x.min_x > ra.max_x || x.max_y < ra.min_y || x.min_y > ra.max_y);
+    });
+    (meets ? touched : out).push_back(r);
+  }
+  if (touched.empty()) return a;
+  Rings cut = toolpath::difference(touched, b);
+  out.insert(out.end(), std::make_move_iterator(cut.begin()), std::make_move_iterator(cut.end()));
+  return out;
+}
+
+// Whether `box` lies inside `bed` when that is one convex ring (bed_region's rectangle or
+// circle): its four corners do. false when unsure (then the caller clips).
+bool within_convex(const Rings& bed, const geo::BBox2& box) {
+  if (bed.size() != 1 || bed[0].size() < 3 || box.empty()) return false;
+  const geo::Ring& r = bed[0];
+  const double sign = ClipperLib::Area(r) > 0 ? 1.0 : -1.0;
+  for (geo::coord_t x : {box.min_x, box.max_x})
+    for (geo::coord_t y : {box.min_y, box.max_y})
+      for (size_t i = 0; i < r.size(); ++i) {
+        const geo::Point& a = r[i];
+        const geo::Point& b = r[(i + 1) % r.size()];
+        const double cross = static_cast<double>(b.X - a.X) * static_cast<double>(y - a.Y) -
+                             static_cast<double>(b.Y - a.Y) * static_cast<double>(x - a.X);
+        if (sign * cross < 0) return false;
+      }
+  return true;
 }
 
 }  // namespace
@@ -56,9 +110,14 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
   const Rings& keep = k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : material[k];
   // Simplified for printing only: done on the column itself, it would erode it layer after layer.
   // (The gaps are cut after: simplifying there would cut chords into them.)
-  Rings printed = toolpath::difference(toolpath::simplify(column, kPrintSimplify), toolpath::near(keep, box));
-  for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
-    printed = toolpath::difference(printed, toolpath::near(material[k - static_cast<size_t>(g)], box));
+  // One boolean cuts the keep-out and the part below (the bottom gap): its clip rings' union
+  // under non-zero fill.
+  Rings cut = toolpath::near(keep, box);
+  for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g) {
+    Rings below = toolpath::near(material[k - static_cast<size_t>(g)], box);
+    cut.insert(cut.end(), std::make_move_iterator(below.begin()), std::make_move_iterator(below.end()));
+  }
+  Rings printed = toolpath::difference(toolpath::simplify(canonical(column), kPrintSimplify), cut);
   // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
   Rings iface = iface_src.empty() ? Rings{}
                                   : toolpath::intersection(printed, closing(toolpath::union_of(iface_src), 0.5 * in.merge_mm));
@@ -89,9 +148,13 @@ ProjectResult project(const ProjectInput& in) {
   const std::vector<Rings> foot = any_bed_only ? footprints(in.layers) : std::vector<Rings>{};
   std::vector<Rings> iface_src(n), columns(n);
   Rings column;
-  // Top-down, serial: each layer's column is the one above, plus its contacts, less the part.
+  // Top-down, serial: each layer's column is the one above, plus its contacts, less the part. The
+  // column stays on the bed (only a contact that reaches past it is clipped to it), and the part
+  // is cut only from the column's rings near it: the same regions as clipping the whole column
+  // at each contact and cutting every ring, with fewer booleans (print_layer starts each ring at
+  // a fixed vertex, so the rings' order and first vertices, which differ, change nothing).
   for (size_t k = n; k-- > 0;) {
-    bool added = false;
+    Rings fresh;  // this layer's contacts
     if (k < in.contacts.size())
       for (const Contact& c : in.contacts[k]) {
         Rings r = toolpath::simplify(c.region, kSimplify);  // once: slope slivers carry arcs of the reach
@@ -101,20 +164,28 @@ ProjectResult project(const ProjectInput& in) {
           r = std::move(kept);
         }
         if (r.empty()) continue;
-        if (in.columns) column.insert(column.end(), r.begin(), r.end()), added = true;
+        if (in.columns) fresh.insert(fresh.end(), r.begin(), r.end());
         for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
           iface_src[k - static_cast<size_t>(j)].insert(iface_src[k - static_cast<size_t>(j)].end(), r.begin(), r.end());
       }
-    if (!in.columns) column = iface_src[k], added = true;  // the interface alone, layer by layer
-    if (column.empty()) continue;
-    if (added) column = toolpath::union_of(column);
-    if (Rings part = toolpath::near(material[k], toolpath::bbox(column)); !part.empty())
-      column = toolpath::difference(column, part);
-    // Only new contacts can reach past the bed: below them the column only shrinks.
-    if (added && !in.bed.empty()) {
-      Rings on = toolpath::intersection(column, in.bed);
-      res.off_bed_mm2 += std::max(0.0, toolpath::area_mm2(column) - toolpath::area_mm2(on));
-      column = std::move(on);
+    if (!in.columns) column.clear(), fresh = iface_src[k];  // the interface alone, layer by layer
+    if (column.empty() && fresh.empty()) continue;
+    geo::BBox2 box = toolpath::bbox(column);
+    for (const geo::Ring& r : fresh)
+      for (const geo::Point& p : r) box.add(p);
+    const Rings part = toolpath::near(material[k], box);
+    if (!fresh.empty() && !in.bed.empty() && !within_convex(in.bed, toolpath::bbox(fresh))) {
+      // What reaches past the bed, less the part, is left out and said.
+      Rings all = toolpath::union_of(fresh);
+      Rings off = toolpath::difference(toolpath::difference(all, in.bed), part);
+      res.off_bed_mm2 += toolpath::area_mm2(off);
+      fresh = toolpath::intersection(all, in.bed);
+    }
+    if (fresh.empty()) {
+      column = difference_near(column, part);
+    } else {
+      column.insert(column.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
+      column = difference_near(toolpath::union_of(column), part);
     }
     columns[k] = column;
   }

@@ -90,3 +90,140 @@ TEST_CASE("support: bed_region in model units, rectangle and circle") {
   auto round = bed_region(true, -100, -100, 100, 100, geo::Point(0, 0));
   CHECK(toolpath::area_mm2(round) == Approx(3.14159 * 100 * 100).epsilon(0.002));
 }
+
+namespace {
+
+// project() as it was before its column loop was made cheaper (one union, one difference with
+// every ring of the column, the whole column clipped to the bed at each contact; the keep-out and
+// the bottom gap cut one after the other), kept here as the reference its results must equal.
+// Rings start at their lowest vertex before the print simplification, as project() does.
+ProjectResult reference_project(const ProjectInput& in) {
+  const size_t n = in.layers.size();
+  std::vector<geo::Rings> material(n);
+  for (size_t k = 0; k < n; ++k) material[k] = toolpath::material(in.layers[k]);
+  std::vector<geo::Rings> foot(n);
+  geo::Rings acc;
+  for (size_t k = 0; k < n; ++k) foot[k] = acc = toolpath::simplify(toolpath::union_of(acc, material[k]), 12500);
+  ProjectResult res;
+  res.layers.resize(n);
+  std::vector<geo::Rings> iface_src(n), columns(n);
+  geo::Rings column;
+  for (size_t k = n; k-- > 0;) {
+    bool added = false;
+    for (const Contact& c : in.contacts[k]) {
+      geo::Rings r = toolpath::simplify(c.region, 12500);
+      if (c.bed_only) {
+        geo::Rings kept = toolpath::difference(r, foot[k]);
+        res.blocked_mm2 += std::max(0.0, area(r) - area(kept));
+        r = kept;
+      }
+      if (r.empty()) continue;
+      if (in.columns) column.insert(column.end(), r.begin(), r.end()), added = true;
+      for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
+        iface_src[k - size_t(j)].insert(iface_src[k - size_t(j)].end(), r.begin(), r.end());
+    }
+    if (!in.columns) column = iface_src[k], added = true;
+    if (column.empty()) continue;
+    if (added) column = toolpath::union_of(column);
+    if (geo::Rings part = toolpath::near(material[k], toolpath::bbox(column)); !part.empty())
+      column = toolpath::difference(column, part);
+    if (added && !in.bed.empty()) {
+      geo::Rings on = toolpath::intersection(column, in.bed);
+      res.off_bed_mm2 += std::max(0.0, area(column) - area(on));
+      column = on;
+    }
+    columns[k] = column;
+  }
+  const double w = in.min_width_mm, speck = w * w * geo::kUnitsPerMm * geo::kUnitsPerMm;
+  auto drop = [&](geo::Rings r) {
+    std::erase_if(r, [&](const geo::Ring& x) { return std::abs(ClipperLib::Area(x)) < speck; });
+    return r;
+  };
+  for (size_t k = 0; k < n; ++k) {
+    if (columns[k].empty()) continue;
+    geo::Rings col = columns[k];
+    for (geo::Ring& ring : col)
+      std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end(), [](const geo::Point& a, const geo::Point& b) {
+                    return a.Y != b.Y ? a.Y < b.Y : a.X < b.X;
+                  }), ring.end());
+    const geo::BBox2 box = toolpath::bbox(columns[k]);
+    const geo::Rings& keep = !in.keep_out[k].empty() ? in.keep_out[k] : material[k];
+    geo::Rings printed = toolpath::difference(toolpath::simplify(col, 50000), toolpath::near(keep, box));
+    for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
+      printed = toolpath::difference(printed, toolpath::near(material[k - size_t(g)], box));
+    geo::Rings iface;
+    if (!iface_src[k].empty()) {
+      const double m = 0.5 * in.merge_mm;
+      iface = toolpath::intersection(
+          printed, toolpath::offset_coarse(toolpath::offset_coarse(toolpath::union_of(iface_src[k]), m), -m));
+    }
+    SupportLayer& out = res.layers[k];
+    out.interface = drop(iface);
+    out.base = drop(toolpath::difference(printed, toolpath::offset_coarse(out.interface, 1.2 * 0.05)));
+    out.area_mm2 = area(out.base) + area(out.interface);
+  }
+  return res;
+}
+
+double xor_area(const geo::Rings& a, const geo::Rings& b) {
+  return area(toolpath::difference(a, b)) + area(toolpath::difference(b, a));
+}
+
+void check_same(const ProjectInput& in) {
+  const ProjectResult got = project(in), want = reference_project(in);
+  REQUIRE(got.layers.size() == want.layers.size());
+  double total = 0;
+  for (size_t k = 0; k < got.layers.size(); ++k) {
+    CAPTURE(k);
+    CHECK(xor_area(got.layers[k].base, want.layers[k].base) < 1e-9);
+    CHECK(xor_area(got.layers[k].interface, want.layers[k].interface) < 1e-9);
+    CHECK(got.layers[k].area_mm2 == Approx(want.layers[k].area_mm2).epsilon(1e-9));
+    total += want.layers[k].area_mm2;
+  }
+  CHECK(total > 0);  // the fixture has support to compare
+  CHECK(got.off_bed_mm2 == Approx(want.off_bed_mm2).epsilon(1e-6));
+  CHECK(got.blocked_mm2 == Approx(want.blocked_mm2).epsilon(1e-6));
+}
+
+geo::Ring circle(double cx, double cy, double r, int n = 90) {
+  geo::Ring out;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    out.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("support: the columns' loop gives the regions of the plain one (union, cut, bed clip at every layer)") {
+  SUBCASE("mushroom, on the bed and off its edge") {
+    auto layers = mushroom();
+    ProjectInput in = test::project_input(layers);
+    in.contacts[8].push_back({cap_overhang(), 2, false});
+    check_same(in);
+    in.bed = bed_region(false, 0, 0, 6, 200, geo::Point(0, 0));  // a bed ending at x = 6 mm: cut
+    check_same(in);
+    in.bed = bed_region(true, -50, -50, 50, 50, geo::Point(0, 0));  // a round bed holding it all
+    check_same(in);
+  }
+  SUBCASE("round cap on a round stem, two contacts on different layers, a bottom gap") {
+    // A 3 mm stem (layers 0..9), a 10 mm disc (10..12), a 16 mm ring round a 6 mm hole (15..17).
+    auto layers = test::stack(18, 0.2, geo::Polygon{circle(0, 0, 1.5), {}});
+    for (size_t k = 10; k < 13; ++k) layers[k].islands[0].shape.outer = circle(0, 0, 5);
+    for (size_t k = 13; k < 15; ++k) layers[k].islands[0].shape.outer = circle(0, 0, 1.5);
+    for (size_t k = 15; k < 18; ++k) layers[k].islands[0].shape = geo::Polygon{circle(0.3, 0.1, 8), {circle(0.3, 0.1, 3, 60)}};
+    ProjectInput in = test::project_input(layers);
+    in.contacts[8].push_back({toolpath::difference({circle(0, 0, 5)}, toolpath::offset({circle(0, 0, 1.5)}, 0.2)), 2, false});
+    in.contacts[13].push_back(
+        {toolpath::difference(toolpath::difference({circle(0.3, 0.1, 8)}, {circle(0.3, 0.1, 3, 60)}), {circle(0, 0, 1.7)}), 3,
+         false});
+    in.bottom_gap_layers = 1;
+    in.bed = bed_region(false, -100, -100, 100, 100, geo::Point(0, 0));
+    check_same(in);
+    in.contacts[13].back().bed_only = true;  // the ring stands over the disc: cut where it lies above it
+    check_same(in);
+    in.columns = false;  // the interfaces alone (tree support)
+    check_same(in);
+  }
+}
