@@ -64,7 +64,19 @@ std::optional<geo::Ring> Comber::route(const Point& a, const Point& b, double sl
   build_comb();
   if (comb_.empty() || !comb_grid_.inside(a) || !comb_grid_.inside(b)) return std::nullopt;
   auto hits = comb_grid_.hits(a, b);
-  if (hits.size() % 2 != 0) return std::nullopt;  // grazing a vertex: not worth the risk
+  // Through a vertex of a ring (a round hole centred on the line), the crossing is counted for
+  // both of its edges: the same segment moved a few nanometres sideways meets each edge once; if
+  // it still passes through one, not worth the risk.
+  auto through_vertex = [](const std::vector<EdgeGrid::Hit>& hs) {
+    if (hs.size() % 2 != 0) return true;
+    for (size_t k = 1; k < hs.size(); ++k)
+      if (hs[k].t - hs[k - 1].t < 1e-12) return true;
+    return false;
+  };
+  if (through_vertex(hits)) {
+    hits = comb_grid_.hits(Point(a.X + 3, a.Y + 7), Point(b.X + 3, b.Y + 7));
+    if (through_vertex(hits)) return std::nullopt;
+  }
   // Each (exit, entry) pair of crossings is bridged along the ring it crosses, the short way.
   geo::Ring path{a};
   for (size_t k = 0; k < hits.size(); k += 2) {

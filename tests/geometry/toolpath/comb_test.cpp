@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "fixtures.h"
 #include "geometry/toolpath/comb.h"
@@ -165,4 +166,23 @@ TEST_CASE("combing: the layer change steps in from a point just outside the laye
   CHECK(shrunk.inside(*near));
   // Further than the tolerance: nothing (the travel leaves the part and retracts).
   CHECK_FALSE(c.enter(to_point(21, 10), 0.45));
+}
+
+TEST_CASE("comb: a travel through a vertex of the route's ring still goes around the hole") {
+  // A round hole of 64 sides centred on the travel's line: the shrunk material's ring has a vertex
+  // exactly on the line (each of the circle's small turns is one mitre point), where the crossings
+  // would be counted once for two edges. The route is found, as between two round holes of a plate.
+  geo::Ring hole;
+  for (int i = 0; i < 64; ++i) {
+    const double t = -2 * std::numbers::pi * i / 64;  // clockwise: a hole
+    hole.push_back(geo::Point(geo::to_units(20 + 3 * std::cos(t)), geo::to_units(20 + 3 * std::sin(t))));
+  }
+  geo::Rings plate{test::rect(0, 0, 40, 40), hole};
+  Comber c(plate);
+  auto a = to_point(20, 10), b = to_point(20, 30);
+  CHECK_FALSE(c.direct(a, b));
+  auto via = c.route(a, b);
+  REQUIRE(via);
+  check_inside(plate, a, *via, b);
+  CHECK(length_mm(a, *via, b) < 20 + 3 * (std::numbers::pi - 2) + 1);
 }
