@@ -15,7 +15,7 @@ namespace {
 std::vector<BrimPath> cut(const geo::Ring& loop, const Rings& obstacles) {
   const Rings near = toolpath::near(obstacles, geo::bbox(loop));
   if (near.empty()) return {{loop, true}};
-  Rings pieces = clip_loops({loop}, near, false);
+  Rings pieces = toolpath::clip_loops({loop}, near, false);
   const double kept = lines_length(pieces);
   if (kept >= geo::length_mm(loop) - 1e-3) return {{loop, true}};  // nothing was cut
   std::vector<BrimPath> out;

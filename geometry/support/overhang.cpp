@@ -30,23 +30,6 @@ std::vector<Rings> components(const Rings& region) {
   return out;
 }
 
-Rings clip_loops(const Rings& loops, const Rings& region, bool inside) {
-  ClipperLib::Clipper c;
-  for (const geo::Ring& r : loops) {
-    if (r.size() < 2) continue;
-    geo::Ring line = r;
-    line.push_back(r.front());  // as an open line: the whole loop
-    c.AddPath(line, ClipperLib::ptSubject, false);
-  }
-  c.AddPaths(region, ClipperLib::ptClip, true);
-  ClipperLib::PolyTree tree;
-  c.Execute(inside ? ClipperLib::ctIntersection : ClipperLib::ctDifference, tree, ClipperLib::pftNonZero,
-            ClipperLib::pftNonZero);
-  Rings lines;
-  ClipperLib::OpenPathsFromPolyTree(tree, lines);
-  return lines;
-}
-
 double lines_length(const Rings& lines) {
   double len = 0;
   for (const geo::Ring& l : lines)

@@ -25,9 +25,6 @@ struct OverhangSpec {
 // connected piece. Rings follow the usual orientation (outer CCW, holes CW).
 std::vector<geo::Rings> components(const geo::Rings& region);
 
-// The closed rings of `loops`, taken as lines, inside `region` (inside = true) or outside it:
-// open pieces.
-geo::Rings clip_loops(const geo::Rings& loops, const geo::Rings& region, bool inside);
 // Length (mm) of open lines.
 double lines_length(const geo::Rings& lines);
 

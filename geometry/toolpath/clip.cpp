@@ -501,6 +501,23 @@ Rings difference(const Rings& a, const Rings& b) {
 }
 Rings union_of(const Rings& a, const Rings& b) { return boolean(a, b, ClipperLib::ctUnion); }
 
+Rings clip_loops(const Rings& loops, const Rings& region, bool inside) {
+  Clipper c;
+  for (const geo::Ring& r : loops) {
+    if (r.size() < 2) continue;
+    geo::Ring line = r;
+    line.push_back(r.front());  // as an open line: the whole loop
+    c.AddPath(line, ClipperLib::ptSubject, false);
+  }
+  c.AddPaths(region, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(inside ? ClipperLib::ctIntersection : ClipperLib::ctDifference, tree, ClipperLib::pftNonZero,
+            ClipperLib::pftNonZero);
+  Rings lines;
+  ClipperLib::OpenPathsFromPolyTree(tree, lines);
+  return lines;
+}
+
 double area_mm2(const Rings& rings) {
   double a = 0;
   for (const auto& r : rings) a += ClipperLib::Area(r);

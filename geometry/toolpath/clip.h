@@ -20,6 +20,9 @@ geo::Rings buffer_loops(const geo::Rings& loops, double mm);
 geo::Rings intersection(const geo::Rings& a, const geo::Rings& b);
 geo::Rings difference(const geo::Rings& a, const geo::Rings& b);
 geo::Rings union_of(const geo::Rings& a, const geo::Rings& b = {});
+// The closed rings of `loops`, taken as lines (each back to its first point), inside `region`
+// (inside = true) or outside it: open pieces.
+geo::Rings clip_loops(const geo::Rings& loops, const geo::Rings& region, bool inside);
 
 // The convex hull of `pts` as one counter-clockwise ring (Andrew's monotone chain); empty for
 // fewer than 3 points or collinear ones.

@@ -92,18 +92,7 @@ double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm, do
 
 std::vector<geo::Ring> loops_outside(const std::vector<geo::Ring>& loops, const Rings& region, double min_mm) {
   std::vector<geo::Ring> out;
-  ClipperLib::Clipper c;
-  for (const geo::Ring& r : loops) {
-    if (r.size() < 2) continue;
-    geo::Ring line = r;
-    line.push_back(r.front());  // as an open line: the whole loop
-    c.AddPath(line, ClipperLib::ptSubject, false);
-  }
-  c.AddPaths(region, ClipperLib::ptClip, true);
-  ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  Rings lines;
-  ClipperLib::OpenPathsFromPolyTree(tree, lines);
+  Rings lines = clip_loops(Rings(loops.begin(), loops.end()), region, false);
   // A loop cut where it does not start comes out as pieces meeting at its first point: joined.
   for (bool joined = true; joined;) {
     joined = false;

@@ -307,15 +307,24 @@ TEST_CASE("zig-zag: on a ring, links join the runs round the hole, each stretch 
   for (const auto& [edge, n] : cover) CHECK_MESSAGE(n <= 1, "circle ", edge.first, " edge ", edge.second);
 }
 
+namespace {
+// A square `mm` wide from the origin, as the links along the border see a ring: real edges.
+tranche::toolpath::zigzag_detail::Ring2 square_ring2(double mm) {
+  const double u = geo::kUnitsPerMm;
+  tranche::toolpath::zigzag_detail::Ring2 sq;
+  sq.pts = {{0, 0}, {mm * u, 0}, {mm * u, mm * u}, {0, mm * u}};
+  sq.kinds.assign(4, geo::EdgeKind::Real);
+  return sq;
+}
+}  // namespace
+
 // With many polylines, the links along the border look up the ends on a grid of cells a link
 // long: the same paths as trying every end. 150 chords across a 60 mm square at shuffled x, links
 // up to 2 mm.
 TEST_CASE("zigzag links: the grid of ends links as trying every end does") {
   using namespace tranche::toolpath::zigzag_detail;
   const double u = geo::kUnitsPerMm;
-  Ring2 sq;
-  sq.pts = {{0, 0}, {60 * u, 0}, {60 * u, 60 * u}, {0, 60 * u}};
-  sq.kinds.assign(4, geo::EdgeKind::Real);
+  const Ring2 sq = square_ring2(60);
   std::vector<Poly> polys;
   uint64_t seed = 777;
   for (int i = 0; i < 150; ++i) {
@@ -351,9 +360,7 @@ TEST_CASE("zigzag links: the grid of ends links as trying every end does") {
 TEST_CASE("zigzag links: free ends are anchored along the border, short of other ends") {
   using namespace tranche::toolpath::zigzag_detail;
   const double u = geo::kUnitsPerMm;
-  Ring2 sq;
-  sq.pts = {{0, 0}, {20 * u, 0}, {20 * u, 20 * u}, {0, 20 * u}};
-  sq.kinds.assign(4, geo::EdgeKind::Real);
+  const Ring2 sq = square_ring2(20);
   auto chord = [&](double x) {
     Poly p;
     p.pts = {{x * u, 0}, {x * u, 20 * u}};
