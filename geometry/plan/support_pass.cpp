@@ -172,16 +172,12 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       if (d.overhang.empty()) continue;
       const double area = toolpath::area_mm2(d.overhang);
       S.overhang_area[L][i] = static_cast<float>(area);
-      int k = contact_layer(S, static_cast<int>(L), d.z_gap);
-      if (d.style == schema::Support::None) {  // not wanted
-        // Said when wider than a short ledge; apart when it hangs too near the bed for a gap.
+      const int k = contact_layer(S, static_cast<int>(L), d.z_gap);
+      if (k < 0 || d.style == schema::Support::None) {  // no room under it, or not wanted
+        // Said when wider than a short ledge; support cannot help an overhang too near the bed.
         (k < 0 ? c.near_bed : c.air)[L] += toolpath::area_mm2(toolpath::offset_open(d.overhang, 0, 0.5 * kLedgeMm));
         continue;
       }
-      // Less than the z gap above the bed (the second layer of a part on a small flat foot): no
-      // gap fits, so support touches it, a pad on the layer right below (PrusaSlicer's first
-      // support layer, grown 3 mm round its columns, ends up under such overhangs the same way).
-      if (k < 0) k = static_cast<int>(L) - 1;
       const int gap = static_cast<int>(L) - 1 - k;
       // Grown by the reach inside the island: the slivers of a slope, a reach apart from layer to
       // layer, then overlap into one band (support/support.h).
@@ -328,12 +324,16 @@ Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report,
                                   "set support = normal or tree (--set support=normal) or support it by a rule");
       !s)
     return s;
-  // What hangs too near the bed for a gap, without support: support would touch it there.
+  // Support may touch what hangs that low: one rule, up to the highest such layer, says so.
+  double near_top = 0;
+  for (size_t L = 0; L < n; ++L)
+    if (c.near_bed[L] >= 1.0) near_top = S.layers[L].z_top;
   if (Status s = warn_unsupported(
           S, c.near_bed, report, o, "overhang-near-bed",
-          "it is less than support_z_gap above the bed: set support = normal or tree (support then touches it, a "
-          "first-layer pad that comes away with its underside), or lay the part on another face (--lay-flat, "
-          "--rotate-x)");
+          fmt::format("it is less than support_z_gap above the bed, so no support fits under it: lay the part on "
+                      "another face (--lay-flat, --rotate-x), or let support touch it there: rule when "
+                      "layer.z_bottom < {:g} mm {{ support_z_gap = 0 mm }}",
+                      near_top));
       !s)
     return s;
   plan_raft(S, static_cast<int>(S.print_props[PropId::RaftLayers]));

@@ -186,40 +186,34 @@ TEST_CASE("support: tree branches hold the cap with far less plastic than column
   CHECK_FALSE(has_warning(tree, "unsupported-overhang"));
 }
 
-TEST_CASE("support: an overhang less than the z gap above the bed stands on a first-layer pad touching it; without support it is said as such") {
+TEST_CASE("support: an overhang less than the z gap above the bed is said as such: support cannot fit under it") {
   test::TempDir dir("support-near-bed");
   geo::Mesh m = geo::box({4, 4, 0.2}, {8, 8, 0});  // one layer of stem
   geo::append(m, geo::box({20, 20, 2}, {0, 0, 0.2}));
-  auto support_on_layer_0 = [](const Run& r) {
-    bool under = false;
-    for (const auto& mv : r.g.moves) under |= extrudes(mv) && is_support(mv) && mv.layer == 0;
-    return under;
-  };
-  auto said_near_bed = [](const Run& r) {
-    for (const auto& w : r.warnings)
-      if (w.code == "overhang-near-bed")
-        return w.message.find("less than support_z_gap above the bed") != std::string::npos &&
-               w.message.find("set support = normal or tree") != std::string::npos;
-    return false;
-  };
-  // Without support (or with a blocker there): in the air, said apart, with what would help.
-  Run none = run(dir, "none", m, {{"support", "none"}});
-  REQUIRE(none.result.ok());
-  CHECK(said_near_bed(none));
-  CHECK_FALSE(has_warning(none, "unsupported-overhang"));
-  CHECK_FALSE(none.g.contains(";TYPE:Support material"));
-  Run blocked = run(dir, "blocked", m, {}, "rule { support = normal }\nrule when layer.index == 1 { support = none }\n");
-  REQUIRE(blocked.result.ok());
-  CHECK(said_near_bed(blocked));
-  CHECK_FALSE(support_on_layer_0(blocked));
-  // With support: no gap fits, so support touches it: a pad on the first layer, nothing said.
-  for (const char* style : {"normal", "tree"}) {
+  for (const char* style : {"none", "normal"}) {
     Run r = run(dir, style, m, {{"support", style}});
-    REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
-    CHECK_FALSE(has_warning(r, "overhang-near-bed"));
-    CHECK_FALSE(has_warning(r, "unsupported-overhang"));
-    CHECK(support_on_layer_0(r));
+    REQUIRE(r.result.ok());
+    CHECK(has_warning(r, "overhang-near-bed"));
+    CHECK_FALSE(has_warning(r, "unsupported-overhang"));  // support would not help: not suggested
+    for (const auto& w : r.warnings)
+      if (w.code == "overhang-near-bed") CHECK(w.message.find("no support fits under it") != std::string::npos);
+    CHECK_FALSE(r.g.contains(";TYPE:Support material"));
   }
+  // The rule the warning gives lets support touch the overhang: it stands on the bed under it,
+  // and nothing is said.
+  Run w = run(dir, "touch", m, {{"support", "normal"}});
+  REQUIRE(w.result.ok());
+  std::string rule;
+  for (const auto& x : w.warnings)
+    if (x.code == "overhang-near-bed") rule = x.message.substr(x.message.find("rule when"));
+  REQUIRE(rule == "rule when layer.z_bottom < 0.4 mm { support_z_gap = 0 mm }");
+  Run t = run(dir, "touched", m, {{"support", "normal"}}, rule + "\n");
+  REQUIRE_MESSAGE(t.result.ok(), (t.result.ok() ? "" : t.result.error().to_string()));
+  CHECK_FALSE(has_warning(t, "overhang-near-bed"));
+  bool under = false;
+  for (const auto& mv : t.g.moves)
+    under |= extrudes(mv) && is_support(mv) && mv.layer == 0;
+  CHECK(under);
 }
 
 TEST_CASE("raft: layers of support under the whole first layer, the part a gap above them, the skirt round it") {
