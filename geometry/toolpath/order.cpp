@@ -241,7 +241,7 @@ namespace {
 // grid, for the greedy order's nearest ends first.
 class EndGrid {
  public:
-  EndGrid(const std::vector<const geo::Ring*>& paths, double cell) : paths_(paths), cell_(cell) {
+  EndGrid(const std::vector<const geo::Ring*>& paths, double cell) : cell_(cell) {
     for (size_t i = 0; i < paths.size(); ++i) {
       if (paths[i]->empty()) continue;
       for (bool rev : {false, true}) {
@@ -281,7 +281,6 @@ class EndGrid {
   static uint64_t key(int64_t x, int64_t y) {
     return (static_cast<uint64_t>(x) << 32) ^ static_cast<uint64_t>(static_cast<uint32_t>(y));
   }
-  const std::vector<const geo::Ring*>& paths_;
   double cell_;
   bool any_ = false;
   int64_t x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0;
