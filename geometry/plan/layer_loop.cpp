@@ -197,7 +197,7 @@ Status LayerTask::piece_level(PathPlan& p) {
     auto dep = nest_.piece_dependence();
     if (!dep) return dep.error();
     vary = nest_.per_piece() && dep->level >= Level::Piece;
-    overhang = overhang || dep->fields[static_cast<size_t>(FieldId::PieceOverhang)];
+    overhang = overhang || (overhang_ && dep->fields[static_cast<size_t>(FieldId::PieceOverhang)]);
   }
   if (overhang && L > 0 && n > 0)
     p.overhang = toolpath::average_along(toolpath::overhang_fractions(p.pts, p.width, nb_.below_grid()), p.pts,
