@@ -69,24 +69,14 @@ bool is_bridge(const Rings& piece, const Rings& below, double max_bridge_mm, dou
     const double a = step * std::numbers::pi / 18;
     const double dx = std::cos(a), dy = std::sin(a);  // along the lines
     double spanned = 0, total = 0;
-    // Lines off the grid of vertices by an odd number of units: none runs through a vertex.
-    for (double off = -half + 0.5 * pitch + 37; off < half; off += pitch) {
-      const double ox = cx - dy * off, oy = cy + dx * off;
-      const geo::Point A = at(ox - dx * half, oy - dy * half), B = at(ox + dx * half, oy + dy * half);
-      const auto hits = piece_grid.hits(A, B);
-      if (hits.size() % 2 != 0) continue;  // grazing a vertex: this line says nothing
-      const double len = std::hypot(double(B.X - A.X), double(B.Y - A.Y));
-      for (size_t i = 0; i + 1 < hits.size(); i += 2) {
-        const double t0 = hits[i].t, t1 = hits[i + 1].t, l = (t1 - t0) * len;
-        total += l;
-        if (l > longest) continue;
-        const double x0 = double(A.X) + (double(B.X) - double(A.X)) * t0 - dx * hold;
-        const double y0 = double(A.Y) + (double(B.Y) - double(A.Y)) * t0 - dy * hold;
-        const double x1 = double(A.X) + (double(B.X) - double(A.X)) * t1 + dx * hold;
-        const double y1 = double(A.Y) + (double(B.Y) - double(A.Y)) * t1 + dy * hold;
-        if (below_grid.inside(at(x0, y0)) && below_grid.inside(at(x1, y1))) spanned += l;
-      }
-    }
+    toolpath::for_each_chord(piece_grid, cx, cy, half, pitch, dx, dy,
+                             [&](double x0, double y0, double x1, double y1, double l) {
+                               total += l;
+                               if (l > longest) return;
+                               if (below_grid.inside(at(x0 - dx * hold, y0 - dy * hold)) &&
+                                   below_grid.inside(at(x1 + dx * hold, y1 + dy * hold)))
+                                 spanned += l;
+                             });
     if (total > 0) best = std::max(best, spanned / total);
   }
   return best >= 0.5;

@@ -3,6 +3,7 @@
 // is a point inside, how much of a bead's width lies over material. Exact integer predicates.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -61,5 +62,29 @@ class EdgeGrid {
 int orient(const geo::Point& a, const geo::Point& b, const geo::Point& c);
 // Whether closed segments ab and cd share a point.
 bool segments_meet(const geo::Point& a, const geo::Point& b, const geo::Point& c, const geo::Point& d);
+
+// The stretches inside `grid`'s region of parallel lines in the unit direction (dx, dy), `pitch`
+// units apart across the disc of radius `half` round (cx, cy), shifted 37 units off the grid of
+// vertices so that none runs through a vertex (a line grazing one anyway says nothing: skipped):
+// chord(x0, y0, x1, y1, length) for each, in units, in order along each line. The bridge tests'
+// sampling (support::is_bridge, the overhanging walls' direction).
+template <class Chord>
+void for_each_chord(const EdgeGrid& grid, double cx, double cy, double half, double pitch, double dx, double dy,
+                    Chord&& chord) {
+  auto at = [](double x, double y) { return geo::Point(std::llround(x), std::llround(y)); };
+  for (double off = -half + 0.5 * pitch + 37; off < half; off += pitch) {
+    const double ox = cx - dy * off, oy = cy + dx * off;
+    const geo::Point A = at(ox - dx * half, oy - dy * half), B = at(ox + dx * half, oy + dy * half);
+    const auto hits = grid.hits(A, B);
+    if (hits.size() % 2 != 0) continue;
+    const double len = std::hypot(double(B.X - A.X), double(B.Y - A.Y));
+    for (size_t i = 0; i + 1 < hits.size(); i += 2) {
+      const double t0 = hits[i].t, t1 = hits[i + 1].t;
+      chord(double(A.X) + (double(B.X) - double(A.X)) * t0, double(A.Y) + (double(B.Y) - double(A.Y)) * t0,
+            double(A.X) + (double(B.X) - double(A.X)) * t1, double(A.Y) + (double(B.Y) - double(A.Y)) * t1,
+            (t1 - t0) * len);
+    }
+  }
+}
 
 }  // namespace tranche::toolpath

@@ -63,23 +63,13 @@ double bridge_angle_deg(const Rings& air, const Rings& below, double hold_mm, do
     const double deg = step * 5.0, a = deg * std::numbers::pi / 180;
     const double dx = std::cos(a), dy = std::sin(a);  // along the lines
     double hanging = 0, total = 0, held_len = 0;
-    // Lines off the grid of vertices by an odd number of units: none runs through a vertex.
-    for (double off = -half + 0.5 * pitch + 37; off < half; off += pitch) {
-      const double ox = cx - dy * off, oy = cy + dx * off;
-      const geo::Point A = at(ox - dx * half, oy - dy * half), B = at(ox + dx * half, oy + dy * half);
-      const auto hits = air_grid.hits(A, B);
-      if (hits.size() % 2 != 0) continue;  // grazing a vertex: this line says nothing
-      const double len = std::hypot(double(B.X - A.X), double(B.Y - A.Y));
-      for (size_t i = 0; i + 1 < hits.size(); i += 2) {
-        const double t0 = hits[i].t, t1 = hits[i + 1].t, l = (t1 - t0) * len * geo::kMmPerUnit;
-        const double x0 = double(A.X) + (double(B.X) - double(A.X)) * t0, y0 = double(A.Y) + (double(B.Y) - double(A.Y)) * t0;
-        const double x1 = double(A.X) + (double(B.X) - double(A.X)) * t1, y1 = double(A.Y) + (double(B.Y) - double(A.Y)) * t1;
-        const int ends = int(held(x0 - dx * hold, y0 - dy * hold)) + int(held(x1 + dx * hold, y1 + dy * hold));
-        total += l;
-        if (ends > 0) held_len += l;
-        hanging += l * (ends == 2 ? l : ends == 1 ? 2 * l : 4 * across);
-      }
-    }
+    for_each_chord(air_grid, cx, cy, half, pitch, dx, dy, [&](double x0, double y0, double x1, double y1, double len) {
+      const double l = len * geo::kMmPerUnit;
+      const int ends = int(held(x0 - dx * hold, y0 - dy * hold)) + int(held(x1 + dx * hold, y1 + dy * hold));
+      total += l;
+      if (ends > 0) held_len += l;
+      hanging += l * (ends == 2 ? l : ends == 1 ? 2 * l : 4 * across);
+    });
     if (total <= 0) continue;
     const double cost = hanging / total;
     if (cost < best_cost - 1e-9) {
