@@ -68,12 +68,7 @@ while read -r name model; do
         peer_cmd cura "$model" "$g" || continue ;;
       *) echo "bench_overhangs: unknown slicer $s" >&2; continue ;;
     esac
-    env -u DISPLAY timeout 600 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
-    rc=$?
-    if [[ ! -s $g ]]; then
-      printf '%s\t%s\tfailed (exit %s: %s)\n' "$name" "$s" "$rc" "$(grep -v '^\s*$' "$out/$name.$s.log" | tail -1 | cut -c1-60)" >>"$rows"
-      continue
-    fi
+    bench_run "$name" "$s" "$g" || continue
     js=-
     off=$(/usr/bin/python3 "$here/quality_row.py" --offset "$model" 100,100)
     if [[ $name != stanford_bunny && -f $GCHECK ]]; then

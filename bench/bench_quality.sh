@@ -24,12 +24,7 @@ while read -r name model; do
     [[ $s == cura ]] && ! command -v CuraEngine >/dev/null && continue
     g="$out/$name.$s.gcode"
     peer_cmd "$s" "$model" "$g" || continue
-    env -u DISPLAY timeout 900 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
-    rc=$?
-    if [[ ! -s $g ]]; then
-      printf '%s\t%s\tfailed (exit %s: %s)\n' "$name" "$s" "$rc" "$(grep -v '^\s*$' "$out/$name.$s.log" | tail -1 | cut -c1-60)" >>"$rows"
-      continue
-    fi
+    bench_run "$name" "$s" "$g" 900 || continue
     if [[ $s == tranche_comb ]]; then
       /usr/bin/python3 "$here/quality_row.py" "$name" "$s" - "$g" >>"$rows"
       continue

@@ -34,12 +34,7 @@ while read -r name model _vol; do
         [[ $s == prusa_arachne ]] && CMD+=(--perimeter-generator arachne) ;;
       *) echo "bench_walls: unknown slicer $s" >&2; continue ;;
     esac
-    env -u DISPLAY timeout 600 "${CMD[@]}" </dev/null >"$out/$name.$s.log" 2>&1
-    rc=$?
-    if [[ ! -s $g ]]; then
-      printf '%s\t%s\tfailed (exit %s: %s)\n' "$name" "$s" "$rc" "$(grep -v '^\s*$' "$out/$name.$s.log" | tail -1 | cut -c1-60)" >>"$rows"
-      continue
-    fi
+    bench_run "$name" "$s" "$g" || continue
     off=$(/usr/bin/python3 "$here/quality_row.py" --offset "$model" 100,100)
     /usr/bin/python3 "$GCHECK" "$model" "$g" --offset="$off" --json "$out/$name.$s.json" >"$out/$name.$s.gcheck" 2>&1
     /usr/bin/python3 "$here/walls_row.py" "$name" "$s" "$out/$name.$s.json" >>"$rows"

@@ -47,6 +47,18 @@ bench_workdir() {
   : >"$rows"
 }
 
+# Runs "${CMD[@]}" (set by peer_cmd) for model NAME with slicer S, writing G-code G, its output in
+# $out/NAME.S.log; when G comes out empty, a "failed" row goes to $rows and it returns 1.
+# bench_run NAME S G [TIMEOUT_S]
+bench_run() {
+  local rc
+  env -u DISPLAY timeout "${4:-600}" "${CMD[@]}" </dev/null >"$out/$1.$2.log" 2>&1
+  rc=$?
+  [[ -s $3 ]] && return 0
+  printf '%s\t%s\tfailed (exit %s: %s)\n' "$1" "$2" "$rc" "$(grep -v '^\s*$' "$out/$1.$2.log" | tail -1 | cut -c1-60)" >>"$rows"
+  return 1
+}
+
 bench_models() {
   local want=${1:-all} d="$CACHE/bench"
   "$ROOT/scripts/fetch-models.sh" >/dev/null 2>&1 || true

@@ -407,6 +407,16 @@ Rings cleaned(Rings raw) {
   return raw;
 }
 
+// Whether `raw`, cleaned, is the union's result already (no ring lost to the cleaning,
+// simple_as_is): then it is left in `out` (else `out` is empty).
+bool as_is(Rings raw, Rings& out) {
+  const size_t n = raw.size();
+  out = cleaned(std::move(raw));
+  if (out.size() == n && simple_as_is(out)) return true;
+  out.clear();
+  return false;
+}
+
 Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
   Rings out;
   if (region.empty()) return out;
@@ -445,17 +455,11 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
         raw_offset(clean, delta, steps_per_rad, 0.2 * tol, raw, trim, trimmed);
         if (!trimmed) break;
       }
-      if (trim && trimmed && !raw.empty()) {
-        Rings simple = cleaned(raw);
-        if (simple.size() == raw.size() && simple_as_is(simple)) return simple;
-      }
+      if (trim && trimmed && !raw.empty() && as_is(std::move(raw), out)) return out;  // raw is built again below
     }
   }
   if (raw.empty()) return out;
-  if (ad < 1.0) {
-    Rings simple = cleaned(raw);
-    if (simple.size() == raw.size() && simple_as_is(simple)) return simple;
-  }
+  if (ad < 1.0 && as_is(raw, out)) return out;
   Clipper c;
   c.AddPaths(raw, ClipperLib::ptSubject, true);
   if (delta > 0) {
