@@ -16,6 +16,9 @@ import sys
 
 from walls_models import write_stl  # ASCII STL of facets, shared with the walls bench
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'examples'))
+from meshgen import box  # noqa: E402  (the examples' axis-aligned box)
+
 
 def frustum(r0, r1, h, n=32):
     """Closed frustum, axis z, radius r0 at z = 0 and r1 at z = h (triangles CCW from outside)."""
@@ -28,16 +31,6 @@ def frustum(r0, r1, h, n=32):
         tris.append((lo[i], hi[j], hi[i]))
         tris.append(((0.0, 0.0, 0.0), lo[j], lo[i]))
         tris.append(((0.0, 0.0, h), hi[i], hi[j]))
-    return tris
-
-
-def box(x0, y0, z0, x1, y1, z1):
-    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
-    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-    tris = []
-    for a, b, c, d in faces:
-        tris.append((v[a], v[b], v[c]))
-        tris.append((v[a], v[c], v[d]))
     return tris
 
 
