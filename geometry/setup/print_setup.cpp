@@ -106,6 +106,7 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
                   fmt::format("the model ({:.1f} × {:.1f} mm) is larger than the bed ({:g} × {:g} mm)", w, d,
                               P[PropId::BedSizeX], P[PropId::BedSizeY]));
   }
+  s->simplify_mm = P[PropId::Resolution];
   s->layers = simplify_layers(layers, s->simplify_mm, s->resolved_index);
   s->layer_cache = std::make_shared<toolpath::LayerCache>(s->layers);
   s->table = ctx::LayerTable(s->layers.size());

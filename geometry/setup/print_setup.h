@@ -55,7 +55,7 @@ struct PrintSetup {
   geo::Point shift;                 // model units + shift = bed units
   toolpath::MotionLimits motion;
   geo::Rings skirt_around;      // what the skirt surrounds: the convex hull of layer 0
-  double simplify_mm = 0.0125;  // mm: island outlines are simplified this much (PrusaSlicer's resolution)
+  double simplify_mm = 0.025;  // mm: island outlines are simplified this much (property `resolution`)
   // What the layer tasks ask of each of `layers` (material, grids, shrunk material), computed
   // once for the print; its contents are filled on first use, from any thread.
   std::shared_ptr<toolpath::LayerCache> layer_cache;

@@ -2,6 +2,9 @@
 // loop reads, the resolved index of each island, the skirt's hull and the print hooks' context.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "tests/support/print_fixture.h"
 
 using namespace tranche;
@@ -66,4 +69,41 @@ TEST_CASE("setup: a speck narrower than the simplification is dropped; the other
   REQUIRE(f.setup->layers[0].islands.size() == 2);
   CHECK(f.setup->resolved_index[0] == std::vector<uint32_t>{0, 2});
   CHECK(f.setup->table.get(0, FieldId::LayerIslands) == 2);  // what the loop sees
+}
+
+TEST_CASE("setup: outlines are simplified to the print's resolution") {
+  // A disc of radius 10 mm as a 2000-gon: its chords lie 1.2 µm inside the circle.
+  geo::Ring disc;
+  for (int k = 0; k < 2000; ++k) {
+    const double a = 2 * M_PI * k / 2000;
+    disc.push_back(geo::to_point(50 + 10 * std::cos(a), 50 + 10 * std::sin(a)));
+  }
+  auto layers = test::prism_layers(1, {disc});
+  // The farthest any original vertex lies from the simplified outline.
+  auto deviation = [&](const geo::Ring& r) {
+    double worst = 0;
+    for (const auto& p : disc) {
+      double best = 1e300;
+      for (size_t i = 0; i < r.size(); ++i) {
+        const geo::Point &a = r[i], &b = r[(i + 1) % r.size()];
+        const double ex = double(b.X - a.X), ey = double(b.Y - a.Y), len2 = ex * ex + ey * ey;
+        const double t = std::clamp((ex * double(p.X - a.X) + ey * double(p.Y - a.Y)) / len2, 0.0, 1.0);
+        best = std::min(best, std::hypot(double(a.X) + t * ex - double(p.X), double(a.Y) + t * ey - double(p.Y)));
+      }
+      worst = std::max(worst, best);
+    }
+    return geo::to_mm(static_cast<geo::coord_t>(std::llround(worst)));
+  };
+  size_t last = disc.size() + 1;
+  for (const char* res : {"0", "0.0125", "0.025", "0.1"}) {
+    INFO("resolution = " << res);
+    test::PrintFixture f(layers, {}, {{"resolution", res}});
+    REQUIRE(f.setup->layers[0].islands.size() == 1);
+    const geo::Ring& out = f.setup->layers[0].islands[0].shape.outer;
+    CHECK(deviation(out) <= std::stod(res) + 1e-6);
+    CHECK(out.size() < last);  // coarser keeps fewer vertices
+    last = out.size();
+  }
+  CHECK(test::PrintFixture(layers).setup->layers[0].islands[0].shape.outer.size() ==
+        test::PrintFixture(layers, {}, {{"resolution", "0.025"}}).setup->layers[0].islands[0].shape.outer.size());
 }
