@@ -36,6 +36,7 @@ IslandPlan island_shell(const setup::PrintSetup& S, int L, size_t i) {
   const auto k = static_cast<size_t>(src.object);
   ip.object_text = k < S.object_texts.size() ? S.object_texts[k] : -1;
   ip.shape = geo::to_rings({src.shape});
+  if (l < S.wall_outlines.size() && i < S.wall_outlines[l].size()) ip.wall_outline = S.wall_outlines[l][i];
   if (l < S.overhang_area.size() && i < S.overhang_area[l].size()) ip.overhang_area = S.overhang_area[l][i];
   return ip;
 }

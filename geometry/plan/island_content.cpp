@@ -51,14 +51,16 @@ void measure_below(IslandPlan& ip, toolpath::Neighbours& nb) {
 }  // namespace
 
 void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, const IslandNeeds& needs) {
-  ip.area = toolpath::area_mm2(ip.shape);
+  // Sizes as the outer wall follows the outline (at the print's resolution).
+  const geo::Rings& outline = ip.wall_outline.empty() ? ip.shape : ip.wall_outline;
+  ip.area = toolpath::area_mm2(outline);
   ip.border_length = 0;
   ip.holes = 0;
-  for (const auto& r : ip.shape) {
+  for (const auto& r : outline) {
     ip.border_length += geo::length_mm(r);
     if (!ClipperLib::Orientation(r)) ++ip.holes;
   }
-  geo::BBox2 b = toolpath::bbox(ip.shape);
+  geo::BBox2 b = toolpath::bbox(outline);
   if (!b.empty()) {
     ip.size_x = geo::to_mm(b.max_x - b.min_x);
     ip.size_y = geo::to_mm(b.max_y - b.min_y);
@@ -354,7 +356,8 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
                   : toolpath::WallMode::Classic;
   spec.min_bead_width = P[PropId::MinBeadWidth];
   spec.max_bead_width = std::max(P[PropId::MaxBeadWidth], spec.min_bead_width);
-  toolpath::Perimeters per = toolpath::make_perimeters(ip.shape, spec);
+  toolpath::Perimeters per =
+      toolpath::make_perimeters(ip.shape, spec, ip.wall_outline.empty() ? nullptr : &ip.wall_outline);
   // overhang_walls = bridge: where the wall band lies over air a bead wide or more, that part of
   // the island is a bridge (geometry/toolpath/overhang_walls.h); walls stay where they rest on
   // the layer below. Not on the first layer (the bed holds it), nor where support holds it up.

@@ -108,6 +108,9 @@ struct IslandPlan {
   int object = 0;    // the plate's object it belongs to
   int object_text = -1;  // object.name: the index of its object's name among the rules' texts, or -1
   geo::Rings shape;  // outline and holes after any replacer offset
+  // The same outline and holes at the print's `resolution`, which the outer walls follow; empty
+  // when that is `shape` (resolution as coarse as the inner one, a replacer's offset).
+  geo::Rings wall_outline;
   // island.* fields, in the units of fields.def (mm, mm², ratio)
   double area = 0, border_length = 0;
   double supported = 0, covered = 0;                          // computed only when a rule reads them

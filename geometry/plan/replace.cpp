@@ -68,6 +68,7 @@ Status IslandReplace::emit_default() {
 
 Status IslandReplace::offset(double mm) {
   ip_.shape = toolpath::offset(ip_.shape, mm);
+  ip_.wall_outline.clear();  // the walls follow the island as offset
   // The rest of the replacer, and everything after it, sees the altered island: its fields and
   // properties are decided again now (a new generation of the island level).
   if (Status s = host_.redecide_island(ip_); !s) return s;

@@ -29,11 +29,16 @@ namespace {
 // Each layer's islands are read by its own task and by its neighbours' (skins, overhang):
 // simplified once here, in parallel, instead of by every reader. Only what the toolpath stage
 // reads is kept (no slicing loops); `source` maps each kept island to its index as resolved.
-std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, double simplify_mm,
+// Islands are simplified by `inner_mm`; where `wall_mm` is finer, `walls` gets each island
+// simplified by it too (the outline its outer wall follows), else stays empty.
+std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, double wall_mm, double inner_mm,
+                                        std::vector<std::vector<geo::Rings>>& walls,
                                         std::vector<std::vector<uint32_t>>& source) {
-  const geo::coord_t tol = geo::to_units(simplify_mm);
+  const geo::coord_t tol = geo::to_units(inner_mm), wall_tol = geo::to_units(wall_mm);
+  const bool two = wall_tol < tol;
   std::vector<geo::Layer> out(layers.size());
   source.assign(layers.size(), {});
+  walls.assign(two ? layers.size() : 0, {});
   tbb::parallel_for(size_t{0}, layers.size(), [&](size_t i) {
     const geo::Layer& src = layers[i];
     geo::Layer& dst = out[i];
@@ -49,6 +54,14 @@ std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, doub
       if (is.shape.outer.empty()) continue;  // narrower than the tolerance
       for (const auto& h : isl.shape.holes)
         if (auto s = toolpath::simplify(h, tol); !s.empty()) is.shape.holes.push_back(std::move(s));
+      if (two) {
+        // The same rings at the finer tolerance (a hole the coarse one dropped stays dropped: it
+        // is narrower than 2 · inner_mm, and its wall would have nothing inside it).
+        geo::Rings w{toolpath::simplify(isl.shape.outer, wall_tol)};
+        for (const auto& h : isl.shape.holes)
+          if (auto s = toolpath::simplify(h, tol); !s.empty()) w.push_back(toolpath::simplify(h, wall_tol));
+        walls[i].push_back(std::move(w));
+      }
       is.area_mm2 = isl.area_mm2;
       is.object = isl.object;
       dst.islands.push_back(std::move(is));
@@ -107,7 +120,8 @@ Result<std::unique_ptr<PrintSetup>> make_setup(std::span<const geo::Layer> layer
                               P[PropId::BedSizeX], P[PropId::BedSizeY]));
   }
   s->simplify_mm = P[PropId::Resolution];
-  s->layers = simplify_layers(layers, s->simplify_mm, s->resolved_index);
+  s->inner_mm = std::max(s->simplify_mm, PrintSetup::kInnerResolutionMm);
+  s->layers = simplify_layers(layers, s->simplify_mm, s->inner_mm, s->wall_outlines, s->resolved_index);
   s->layer_cache = std::make_shared<toolpath::LayerCache>(s->layers);
   s->table = ctx::LayerTable(s->layers.size());
   for (size_t i = 0; i < s->layers.size(); ++i) {

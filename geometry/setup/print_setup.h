@@ -45,9 +45,14 @@ struct PrintSetup {
   PrintSetup(const PrintSetup&) = delete;
   PrintSetup& operator=(const PrintSetup&) = delete;
 
-  std::vector<geo::Layer> layers;   // islands simplified by simplify_mm; no slicing loops
+  // Islands simplified by inner_mm (no slicing loops): what walls, fill, support and the
+  // relations between layers are made from.
+  std::vector<geo::Layer> layers;
+  // wall_outlines[l][i]: island i of layers[l] simplified by simplify_mm only, what its outer
+  // wall follows; empty where that is the island itself (inner_mm == simplify_mm).
+  std::vector<std::vector<geo::Rings>> wall_outlines;
   // resolved_index[l][i]: the index of island i of layers[l] among the islands as resolved (a
-  // speck narrower than simplify_mm is dropped, so the two may differ).
+  // speck narrower than inner_mm is dropped, so the two may differ).
   std::vector<std::vector<uint32_t>> resolved_index;
   ctx::LayerTable table;            // every layer's layer-level fields, from `layers`
   ctx::Context print_ctx;           // print fields set (print.layers too), `table` bound
@@ -55,7 +60,12 @@ struct PrintSetup {
   geo::Point shift;                 // model units + shift = bed units
   toolpath::MotionLimits motion;
   geo::Rings skirt_around;      // what the skirt surrounds: the convex hull of layer 0
-  double simplify_mm = 0.025;  // mm: island outlines are simplified this much (property `resolution`)
+  // mm: the outer walls follow the outlines simplified this much (property `resolution`); all
+  // else works on them simplified by inner_mm = max(resolution, kInnerResolutionMm): a polygon
+  // operation costs in proportion to its vertices, and a few µm inside the walls print nowhere.
+  static constexpr double kInnerResolutionMm = 0.025;
+  double simplify_mm = 0.0125;
+  double inner_mm = kInnerResolutionMm;
   // What the layer tasks ask of each of `layers` (material, grids, shrunk material), computed
   // once for the print; its contents are filled on first use, from any thread.
   std::shared_ptr<toolpath::LayerCache> layer_cache;

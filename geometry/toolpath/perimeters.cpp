@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/flow.h"
@@ -88,7 +89,7 @@ std::vector<VarBead> gap_beads(const geo::Rings& island, const std::vector<geo::
 }
 }  // namespace
 
-Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) {
+Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec, const geo::Rings* wall_outline) {
   Perimeters out;
   const double h = spec.height;
   const size_t count = spec.widths.size();
@@ -129,13 +130,17 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec) 
   std::vector<geo::Rings> by_depth(count);
   for (size_t k = 0; k < count; ++k) {
     geo::Rings rings;
+    const geo::Rings& from = k == 0 && wall_outline ? *wall_outline : island;
     if (!thin) {
-      rings = offset(island, -dist[k]);
+      rings = offset(from, -dist[k]);
     } else {
       // Opened: where a part is too thin for the loop's two sides to stay 2·gap apart, the loop
       // is dropped instead of printed as overlapping beads.
-      geo::Rings shrunk = offset(island, -(dist[k] + gap[k]));
-      if (steiner.collapsed(shrunk, dist[k] + gap[k])) vanished = true;
+      geo::Rings shrunk = offset(from, -(dist[k] + gap[k]));
+      // The prediction from the rings shrunk (the wall outline's area exceeds the island's).
+      std::optional<Steiner> own;
+      if (&from != &island) own.emplace(from);
+      if ((own ? *own : steiner).collapsed(shrunk, dist[k] + gap[k])) vanished = true;
       // Loop 0 keeps its corners (mitred grow-back); inner loops are rounded (they face the fill).
       rings = k == 0 || variable ? grow_mitred(shrunk, gap[k]) : offset(shrunk, gap[k]);
     }

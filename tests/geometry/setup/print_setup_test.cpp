@@ -71,18 +71,28 @@ TEST_CASE("setup: a speck narrower than the simplification is dropped; the other
   CHECK(f.setup->table.get(0, FieldId::LayerIslands) == 2);  // what the loop sees
 }
 
-TEST_CASE("setup: outlines are simplified to the print's resolution") {
-  // A disc of radius 10 mm as a 2000-gon: its chords lie 1.2 µm inside the circle.
-  geo::Ring disc;
-  for (int k = 0; k < 2000; ++k) {
-    const double a = 2 * M_PI * k / 2000;
-    disc.push_back(geo::to_point(50 + 10 * std::cos(a), 50 + 10 * std::sin(a)));
-  }
-  auto layers = test::prism_layers(1, {disc});
-  // The farthest any original vertex lies from the simplified outline.
-  auto deviation = [&](const geo::Ring& r) {
+TEST_CASE("setup: outer walls follow the outlines at the print's resolution, the rest at 0.025 mm or coarser") {
+  // A disc of radius 10 mm as a 2000-gon with a round hole: its chords lie 1.2 µm inside the circle.
+  auto circle = [](double r, bool ccw) {
+    geo::Ring ring;
+    for (int k = 0; k < 2000; ++k) {
+      const double a = (ccw ? 2 : -2) * M_PI * k / 2000;
+      ring.push_back(geo::to_point(50 + r * std::cos(a), 50 + r * std::sin(a)));
+    }
+    return ring;
+  };
+  const geo::Ring disc = circle(10, true), hole = circle(4, false);
+  geo::Layer layer;
+  geo::Island island;
+  island.shape.outer = disc;
+  island.shape.holes = {hole};
+  layer.islands = {island};
+  layer.z_top = 0.2;
+  const std::vector<geo::Layer> layers{layer};
+  // The farthest any vertex of `of` lies from `r`.
+  auto deviation = [&](const geo::Ring& of, const geo::Ring& r) {
     double worst = 0;
-    for (const auto& p : disc) {
+    for (const auto& p : of) {
       double best = 1e300;
       for (size_t i = 0; i < r.size(); ++i) {
         const geo::Point &a = r[i], &b = r[(i + 1) % r.size()];
@@ -97,13 +107,32 @@ TEST_CASE("setup: outlines are simplified to the print's resolution") {
   size_t last = disc.size() + 1;
   for (const char* res : {"0", "0.0125", "0.025", "0.1"}) {
     INFO("resolution = " << res);
+    const double r = std::stod(res), inner = std::max(r, 0.025);
     test::PrintFixture f(layers, {}, {{"resolution", res}});
     REQUIRE(f.setup->layers[0].islands.size() == 1);
-    const geo::Ring& out = f.setup->layers[0].islands[0].shape.outer;
-    CHECK(deviation(out) <= std::stod(res) + 1e-6);
-    CHECK(out.size() < last);  // coarser keeps fewer vertices
-    last = out.size();
+    const geo::Polygon& shape = f.setup->layers[0].islands[0].shape;
+    REQUIRE(shape.holes.size() == 1);
+    CHECK(deviation(disc, shape.outer) <= inner + 1e-6);
+    CHECK(deviation(hole, shape.holes[0]) <= inner + 1e-6);
+    if (r < inner) {
+      REQUIRE(f.setup->wall_outlines.size() == 1);
+      REQUIRE(f.setup->wall_outlines[0].size() == 1);
+      const geo::Rings& wall = f.setup->wall_outlines[0][0];
+      REQUIRE(wall.size() == 2);
+      CHECK(deviation(disc, wall[0]) <= r + 1e-6);
+      CHECK(deviation(hole, wall[1]) <= r + 1e-6);
+      CHECK(wall[0].size() < last);  // coarser keeps fewer vertices
+      CHECK(wall[0].size() > shape.outer.size());
+      last = wall[0].size();
+    } else {
+      CHECK(f.setup->wall_outlines.empty());  // the walls follow the island itself
+      CHECK(shape.outer.size() < last);
+      last = shape.outer.size();
+    }
   }
-  CHECK(test::PrintFixture(layers).setup->layers[0].islands[0].shape.outer.size() ==
-        test::PrintFixture(layers, {}, {{"resolution", "0.025"}}).setup->layers[0].islands[0].shape.outer.size());
+  // The default is PrusaSlicer's 0.0125 mm for the walls.
+  test::PrintFixture f(layers);
+  REQUIRE(f.setup->wall_outlines.size() == 1);
+  CHECK(deviation(disc, f.setup->wall_outlines[0][0][0]) <= 0.0125 + 1e-6);
+  CHECK(deviation(disc, f.setup->wall_outlines[0][0][0]) > 0.005);
 }

@@ -69,6 +69,67 @@ TEST_CASE("perimeters: in a part too thin for two loops the second vanishes inst
   CHECK(per.fill_region.empty());
 }
 
+TEST_CASE("perimeters: the outer loop follows the wall outline, the rest the island simplified more") {
+  // A disc of radius 5 mm as a 720-gon (the wall outline) and as a 24-gon (the island: its
+  // chords up to 43 µm inside the circle).
+  auto disc = [](int n) {
+    geo::Ring r;
+    for (int k = 0; k < n; ++k)
+      r.push_back(geo::to_point(5 * std::cos(2 * M_PI * k / n), 5 * std::sin(2 * M_PI * k / n)));
+    return geo::Rings{r};
+  };
+  const geo::Rings fine = disc(720), coarse = disc(24);
+  // The nearest and farthest the ring comes to the centre (vertices and edges' midpoints).
+  auto radii = [](const geo::Ring& r) {
+    double lo = 1e9, hi = 0;
+    for (size_t i = 0; i < r.size(); ++i) {
+      const geo::Point &p = r[i], &q = r[(i + 1) % r.size()];
+      for (double t : {0.0, 0.5}) {
+        const double d = std::hypot(geo::to_mm(p.X) + t * geo::to_mm(q.X - p.X), geo::to_mm(p.Y) + t * geo::to_mm(q.Y - p.Y));
+        lo = std::min(lo, d), hi = std::max(hi, d);
+      }
+    }
+    return std::pair{lo, hi};
+  };
+  for (WallMode mode : {WallMode::Classic, WallMode::Variable}) {
+    PerimeterSpec spec;
+    spec.mode = mode;
+    for (bool thin : {false, true}) {
+      INFO("variable " << (mode == WallMode::Variable) << ", thin path " << thin);
+      // A strip too thin for two loops beside the disc, in both, sends the walls down the path
+      // that opens loops.
+      geo::Rings island = coarse, outline = fine;
+      if (thin) {
+        island.push_back(test::rect(10, -0.4, 30, 0.4));
+        outline.push_back(test::rect(10, -0.4, 30, 0.4));
+      }
+      const auto with = make_perimeters(island, spec, &outline);
+      const auto without = make_perimeters(island, spec);
+      REQUIRE(with.loops.size() == without.loops.size());
+      if (thin) CHECK(!with.beads.empty());  // the strip's middle
+      // Loop 0 of the disc lies 0.225 mm inside the circle (the 720-gon's chords sag 0.05 µm),
+      // not inside the 24-gon; the inner loops and the fill region are the same as without.
+      const Loop* disc0 = nullptr;
+      for (const auto& l : with.loops)
+        if (l.depth == 0 && std::abs(geo::to_mm(l.ring[0].X)) < 6) disc0 = &l;
+      const Loop* disc0_without = nullptr;
+      for (const auto& l : without.loops)
+        if (l.depth == 0 && std::abs(geo::to_mm(l.ring[0].X)) < 6) disc0_without = &l;
+      REQUIRE(disc0);
+      REQUIRE(disc0_without);
+      const auto [lo, hi] = radii(disc0->ring);
+      CHECK(lo >= 5 - 0.225 - 0.002);
+      CHECK(hi <= 5 - 0.225 + 0.002);
+      CHECK(radii(disc0_without->ring).first < 5 - 0.225 - 0.03);
+      for (size_t k = 0; k < with.loops.size(); ++k)
+        if (with.loops[k].depth > 0) CHECK(with.loops[k].ring == without.loops[k].ring);
+      CHECK(area_mm2(difference(with.fill_region, without.fill_region)) < 1e-6);
+      CHECK(area_mm2(difference(without.fill_region, with.fill_region)) < 1e-6);
+      CHECK(area_mm2(with.fill_region) > 40);
+    }
+  }
+}
+
 TEST_CASE("zig-zag: a convex cell is filled by one continuous path along its border") {
   geo::Rings sq{test::rect(0, 0, 10, 10)};
   FillSpec spec;
