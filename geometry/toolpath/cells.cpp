@@ -14,10 +14,16 @@ FillShape region_shape(const geo::Rings& region, const std::vector<const EdgeGri
   const auto tol = static_cast<geo::coord_t>(std::llround(on_border_mm * geo::kUnitsPerMm));
   FillShape s;
   if (region.empty()) return s;
-  ClipperLib::Clipper clip;
-  clip.AddPaths(region, ClipperLib::ptSubject, true);
+  // Regions come out of booleans and offsets, nearly always disjoint rings already: the union
+  // that would make them so runs only when the exact test says they are not.
   ClipperLib::Paths rings;
-  clip.Execute(ClipperLib::ctUnion, rings, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  if (is_clean_region(region)) {
+    rings = region;
+  } else {
+    ClipperLib::Clipper clip;
+    clip.AddPaths(region, ClipperLib::ptSubject, true);
+    clip.Execute(ClipperLib::ctUnion, rings, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  }
   for (auto& ring : rings) {
     if (ring.size() < 3) continue;
     std::vector<geo::EdgeKind> kinds(ring.size());

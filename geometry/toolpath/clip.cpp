@@ -479,6 +479,14 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
 }
 }  // namespace
 
+bool is_clean_region(const Rings& rings) {
+  if (rings.empty()) return true;
+  for (const auto& r : rings)
+    for (size_t i = 0; i < r.size(); ++i)
+      if (r[i] == r[(i + 1) % r.size()]) return false;
+  return simple_as_is(rings);
+}
+
 Rings offset(const Rings& region, double mm) { return offset_with(region, mm, kArcTolerance); }
 Rings offset_coarse(const Rings& region, double mm) { return offset_with(region, mm, 25000); }
 

@@ -20,6 +20,11 @@ geo::Rings buffer_loops(const geo::Rings& loops, double mm);
 geo::Rings intersection(const geo::Rings& a, const geo::Rings& b);
 geo::Rings difference(const geo::Rings& a, const geo::Rings& b);
 geo::Rings union_of(const geo::Rings& a, const geo::Rings& b = {});
+// Whether `rings` are already what union_of would make of them, up to where each ring starts and
+// vertices in line with their neighbours: at most 16 rings, no repeated vertex, no two edges
+// meeting but consecutive ones at their common end, outers counter-clockwise inside no other
+// ring or nested as a region's are, holes clockwise (exact tests, far cheaper than the union).
+bool is_clean_region(const geo::Rings& rings);
 // The closed rings of `loops`, taken as lines (each back to its first point), inside `region`
 // (inside = true) or outside it: open pieces.
 geo::Rings clip_loops(const geo::Rings& loops, const geo::Rings& region, bool inside);

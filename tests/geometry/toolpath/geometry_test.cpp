@@ -520,3 +520,31 @@ TEST_CASE("chain: the greedy order over a grid of ends is the one from trying ev
   }
   CHECK(plain.size() == 300);
 }
+
+TEST_CASE("clip: is_clean_region says when a region is already its own union") {
+  const geo::Ring sq = test::rect(0, 0, 10, 10), hole = test::rect(3, 3, 6, 6, false);
+  CHECK(is_clean_region({}));
+  CHECK(is_clean_region({sq}));
+  CHECK(is_clean_region({sq, hole}));
+  CHECK(is_clean_region({sq, hole, test::rect(4, 4, 5, 5)}));  // an island in the hole
+  CHECK(is_clean_region({sq, test::rect(20, 0, 30, 10)}));     // side by side
+  CHECK(is_clean_region(offset({sq, hole}, -1)));
+  CHECK_FALSE(is_clean_region({sq, test::rect(5, 5, 15, 15)}));          // overlapping outers
+  CHECK_FALSE(is_clean_region({sq, test::rect(2, 2, 4, 4)}));            // an outer inside an outer
+  CHECK_FALSE(is_clean_region({sq, test::rect(3, 3, 6, 6, true)}));      // the hole counter-clockwise
+  CHECK_FALSE(is_clean_region({test::rect(3, 3, 6, 6, false)}));         // a hole alone
+  CHECK_FALSE(is_clean_region({sq, test::rect(8, 3, 12, 6, false)}));    // a hole crossing its outer
+  CHECK_FALSE(is_clean_region({sq, test::rect(0, 0, 10, 10)}));           // the same ring twice
+  geo::Ring dup = sq;
+  dup.insert(dup.begin() + 1, dup[1]);
+  CHECK_FALSE(is_clean_region({dup}));  // a repeated vertex
+  geo::Ring bow{geo::to_point(0, 0), geo::to_point(10, 10), geo::to_point(10, 0), geo::to_point(0, 10)};
+  CHECK_FALSE(is_clean_region({bow}));  // a bow tie
+  // Where it says so, the union gives the same region.
+  for (const geo::Rings& r : {geo::Rings{sq, hole}, offset({sq, hole}, -1), geo::Rings{sq, test::rect(20, 0, 30, 10)}}) {
+    REQUIRE(is_clean_region(r));
+    CHECK(area_mm2(r) == Approx(area_mm2(union_of(r))));
+    CHECK(area_mm2(difference(r, union_of(r))) < 1e-9);
+    CHECK(area_mm2(difference(union_of(r), r)) < 1e-9);
+  }
+}
