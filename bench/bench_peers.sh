@@ -84,9 +84,11 @@ for model, sl in by.items():
     peers = [r for s, r in sl.items() if s != 'tranche' and len(r) == 5]
     if t and len(t) == 5 and peers:
         fast = min(peers, key=lambda r: float(r[3]))
-        ok = float(t[3]) <= 0.5 * float(fast[3]) and float(t[4]) <= float(fast[4])
-        print(f'{"":<16}{"":>10}  target (half the fastest peer\'s time, {fast[2]}, and no more memory): '
-              f'{"met" if ok else "missed"}')
+        # Issue 14's goal for the Stanford bunny and the 819k torus: 0.35 of the fastest peer's
+        # wall time (the earlier goal was half of it), and no more memory.
+        ok = float(t[3]) <= 0.35 * float(fast[3]) and float(t[4]) <= float(fast[4])
+        print(f'{"":<16}{"":>10}  target (0.35 of the fastest peer\'s time, {fast[2]}, and no more memory): '
+              f'{"met" if ok else "missed"} ({float(t[3]) / float(fast[3]):.2f})')
 EOF
 [[ -n ${OUT:-} ]] && echo "files kept in $out"
 exit 0
