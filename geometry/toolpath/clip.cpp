@@ -495,11 +495,32 @@ Rings offset_open(const Rings& region, double mm, double open_mm) {
 }
 
 Rings buffer_loops(const Rings& loops, double mm) {
-  Rings out;
-  if (loops.empty()) return out;
-  ClipperOffset co(2.0, kArcTolerance);
-  co.AddPaths(loops, ClipperLib::jtRound, ClipperLib::etClosedLine);
-  co.Execute(out, mm * geo::kUnitsPerMm);
+  // Each loop's band is the loop (as a region) grown by mm less the loop shrunk by mm: the grown
+  // rings as they are and the shrunk ones turned have winding 1 in the band, 0 elsewhere (the
+  // shrunk lies within the grown). Two of our offsets, which mostly skip the union, instead of
+  // Clipper's line offset, which unites both sides of every loop.
+  Rings out, odd;
+  for (const geo::Ring& loop : loops) {
+    if (loop.size() < 3 || ClipperLib::Area(loop) == 0) {
+      odd.push_back(loop);  // no region: a line or a point
+      continue;
+    }
+    Rings r{loop};
+    if (!ClipperLib::Orientation(r[0])) ClipperLib::ReversePath(r[0]);
+    Rings grown = offset(r, mm), shrunk = offset(r, -mm);
+    for (geo::Ring& g : grown) out.push_back(std::move(g));
+    for (geo::Ring& s : shrunk) {
+      ClipperLib::ReversePath(s);
+      out.push_back(std::move(s));
+    }
+  }
+  if (!odd.empty()) {
+    ClipperOffset co(2.0, kArcTolerance);
+    co.AddPaths(odd, ClipperLib::jtRound, ClipperLib::etClosedLine);
+    Rings line;
+    co.Execute(line, mm * geo::kUnitsPerMm);
+    for (geo::Ring& l : line) out.push_back(std::move(l));
+  }
   return out;
 }
 

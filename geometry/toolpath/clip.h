@@ -14,7 +14,9 @@ geo::Rings offset(const geo::Rings& region, double mm);
 geo::Rings offset_coarse(const geo::Rings& region, double mm);
 // Shrinks by `mm`, then grows back by `open_mm`: removes parts narrower than 2·open_mm.
 geo::Rings offset_open(const geo::Rings& region, double mm, double open_mm);
-// The area within `mm` of closed lines (each ring taken as a loop of centreline).
+// The area within `mm` of closed lines (each ring taken as a loop of centreline), as rings whose
+// non-zero winding is that area (each loop's band on its own, not united with the others: a
+// boolean's non-zero clip or union_of unites them).
 geo::Rings buffer_loops(const geo::Rings& loops, double mm);
 
 geo::Rings intersection(const geo::Rings& a, const geo::Rings& b);
