@@ -5,11 +5,18 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <type_traits>
 #include <bit>
 #include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#include <tmmintrin.h>
+#endif
 
 #include "geometry/mesh/weld.h"
 
@@ -91,9 +98,12 @@ int append_digits(const char*& q, const char* end, uint64_t& m) {
 }
 
 const char* number(const char* p, const char* end, float& out) {
-  // [-]digits[.digits]: m / 10^k is exact in double arithmetic while m < 2^53 and k <= 22 (one
-  // correctly rounded division, Clinger's fast path), and the double then rounds to the float
-  // the decimal itself rounds to, unless it lies exactly halfway between two floats.
+  // [-]digits[.digits] with at most 15 digits: m (exact in a double) times the double nearest
+  // 10^-k is the decimal's value to within 2 units in the last place of a double (two roundings,
+  // each within half a unit of the binade's). That double rounds to the float the decimal rounds
+  // to unless a point halfway between two floats lies within those 2 units of it, which its low
+  // 29 bits (of 52) say: they are 1 then zeros there. Such rare values, and every other form, go
+  // to std::from_chars, which rounds exactly.
   const char* q = p;
   const bool minus = q < end && *q == '-';
   q += minus;
@@ -106,16 +116,16 @@ const char* number(const char* p, const char* end, float& out) {
     k = append_digits(q, end, m);
     digits += k;
   }
-  static constexpr double kTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  static constexpr double kTenth[] = {1e0,   1e-1,  1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+                                      1e-8,  1e-9,  1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
   const bool plain = digits > 0 && digits <= 15 && (q == end || (*q != 'e' && *q != 'E' && !digit(*q)));
   if (plain) {
-    const double d = static_cast<double>(m) / kTen[k];
+    const double d = static_cast<double>(m) * kTenth[k];
     uint64_t bits;
     std::memcpy(&bits, &d, sizeof bits);
     const float f = static_cast<float>(d);
-    // Halfway between two floats: the low 29 of the double's 52 fraction bits are 1 then zeros.
-    if ((bits & ((uint64_t{1} << 29) - 1)) != (uint64_t{1} << 28) && (m == 0 || std::fabs(f) >= FLT_MIN)) {
+    constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;
+    if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
       out = minus ? -f : f;
       return q;
     }
@@ -128,6 +138,230 @@ template <class T>
 bool parse(std::string_view v, T& out) {
   return number(v.data(), v.data() + v.size(), out) == v.data() + v.size();
 }
+
+// The bytes past an element's start that the fast reading below may load at once.
+constexpr size_t kSlack = 128;
+
+std::atomic<bool> simd_allowed{true};  // allow_simd()
+
+// Whether [p, end) begins with `lit` (a literal: its length is known when compiling).
+template <size_t N>
+bool starts(const char* p, const char* end, const char (&lit)[N]) {
+  return end - p >= static_cast<ptrdiff_t>(N - 1) && std::memcmp(p, lit, N - 1) == 0;
+}
+
+// How many of the 16 bytes at p are XML spaces before the first that is not (16: all are).
+int leading_spaces(const char* p) {
+#if defined(__SSE2__)
+  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  const __m128i s = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, _mm_set1_epi8(' ')), _mm_cmpeq_epi8(x, _mm_set1_epi8('\t'))),
+                                 _mm_or_si128(_mm_cmpeq_epi8(x, _mm_set1_epi8('\n')), _mm_cmpeq_epi8(x, _mm_set1_epi8('\r'))));
+  return std::countr_one(static_cast<unsigned>(_mm_movemask_epi8(s)) & 0xFFFFu);
+#else
+  int n = 0;
+  while (n < 16 && space(p[n])) ++n;
+  return n;
+#endif
+}
+
+// The form most writers use, `<vertex x="1" y="2" z="3"/>` or `<triangle v1="0" v2="1" v3="2" />`
+// (`names` holds the three attributes' ` name="` in order), at p: its values, and p moved past
+// it; false (p unmoved) for any other form.
+template <class T, size_t NT, size_t NA>
+bool read_three(const char*& p, const char* end, const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3]) {
+  if (!starts(p, end, tag)) return false;
+  const char* q = p + NT - 1;
+  for (int k = 0; k < 3; ++k) {
+    if (!starts(q, end, names[k])) return false;
+    q = number(q + NA - 1, end, out[k]);
+    if (!q || q == end || *q != '"') return false;
+    ++q;
+  }
+  while (q < end && space(*q)) ++q;
+  if (!starts(q, end, "/>")) return false;
+  p = q + 2;
+  return true;
+}
+
+#if defined(__SSE2__)
+// Bit i set where p[i] == c, for i below 64.
+uint64_t mask64(__m128i a, __m128i b, __m128i c, __m128i d, char ch) {
+  const __m128i x = _mm_set1_epi8(ch);
+  return static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(a, x)))) |
+         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(b, x)))) << 16 |
+         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(c, x)))) << 32 |
+         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(d, x)))) << 48;
+}
+
+// The value between a value's quotes [a, b) (at least kSlack bytes before the end of the text),
+// as number() reads it to b; false: it is not a number (or not all of [a, b) is).
+bool value(const char* a, const char* b, const char* end, uint32_t& out) {
+  const ptrdiff_t n = b - a;
+  uint64_t chunk;
+  std::memcpy(&chunk, a, 8);
+  if (n >= 1 && n <= 8 && leading_digits(chunk) == n) {
+    out = digits_value(chunk, static_cast<int>(n));
+    return true;
+  }
+  return number(a, end, out) == b;
+}
+
+bool use_ssse3() {
+#if defined(__GNUC__)
+  static const bool has = __builtin_cpu_supports("ssse3");
+  return has && simd_allowed.load(std::memory_order_relaxed);
+#else
+  return false;
+#endif
+}
+
+// value() of a coordinate with SSSE3 (the byte shuffle): the sign and point taken out and the
+// digits converted 16 at a time (pairs, fours, eights). The same results as value() below.
+__attribute__((target("ssse3"))) bool value_ssse3(const char* a, const char* b, const char* end, float& out) {
+  const int n = static_cast<int>(b - a);
+  if (n >= 1 && n <= 16) {
+    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
+    const unsigned in = (1u << n) - 1;  // the value's bytes
+    const int minus = *a == '-';
+    const unsigned dots = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
+    const int point = dots ? std::countr_zero(dots) : n;  // where the point is (n: none)
+    const int whole = point - minus;                      // digits before it
+    const int digits = n - minus - (dots ? 1 : 0);
+    const __m128i d = _mm_sub_epi8(x, _mm_set1_epi8('0'));
+    const unsigned is_digit =
+        static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
+    const unsigned need = in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
+    if (whole > 0 && digits <= 15 && (is_digit & need) == need) {
+      // Output byte o holds digit t = o - (16 - digits) (from the byte after the sign, skipping the
+      // point); those before the first digit are zeros.
+      const __m128i t = _mm_add_epi8(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                                     _mm_set1_epi8(static_cast<char>(digits - 16)));
+      const __m128i after_point = _mm_cmpgt_epi8(t, _mm_set1_epi8(static_cast<char>(whole - 1)));
+      const __m128i from = _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
+      const __m128i control = _mm_or_si128(from, _mm_cmpgt_epi8(_mm_setzero_si128(), t));  // negative: a zero
+      const __m128i v = _mm_shuffle_epi8(d, control);
+      const __m128i pairs = _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
+      const __m128i fours = _mm_madd_epi16(pairs, _mm_setr_epi16(100, 1, 100, 1, 100, 1, 100, 1));
+      const __m128i packed = _mm_packs_epi32(fours, fours);  // each below 10^4
+      const __m128i eights = _mm_madd_epi16(packed, _mm_setr_epi16(10000, 1, 10000, 1, 10000, 1, 10000, 1));
+      const uint64_t both = static_cast<uint64_t>(_mm_cvtsi128_si64(eights));
+      const uint64_t m = (both & 0xFFFFFFFF) * 100000000 + (both >> 32);
+      static constexpr double kTenth[] = {1e0, 1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+                                          1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+      const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[digits - whole];
+      uint64_t bits;
+      std::memcpy(&bits, &r, sizeof bits);
+      const float f = static_cast<float>(r);
+      constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
+      if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
+        out = minus ? -f : f;
+        return true;
+      }
+    }
+  }
+  return number(a, end, out) == b;
+}
+
+bool value(const char* a, const char* b, const char* end, float& out) {
+  // As number(): [-]digits[.digits], here at most 7 digits before the point and 7 after.
+  static constexpr uint64_t kPow10[8] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
+  static constexpr double kTenth[8] = {1e0, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7};
+  const bool minus = *a == '-';
+  const char* q = a + minus;
+  uint64_t chunk;
+  std::memcpy(&chunk, q, 8);
+  const int whole = leading_digits(chunk);
+  if (whole > 0 && whole < 8) {
+    uint64_t m = digits_value(chunk, whole);
+    int k = 0;
+    q += whole;
+    if (q != b && *q == '.') {
+      std::memcpy(&chunk, q + 1, 8);
+      k = leading_digits(chunk);
+      if (k > 0 && k < 8) m = m * kPow10[k] + digits_value(chunk, k);
+      q += 1 + k;
+    }
+    if (q == b && k < 8) {
+      const double d = static_cast<double>(m) * kTenth[k];
+      uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      const float f = static_cast<float>(d);
+      constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
+      if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
+        out = minus ? -f : f;
+        return true;
+      }
+    }
+  }
+  return number(a, end, out) == b;
+}
+
+// read_three() on the element at p ('<' there, at least kSlack bytes before the end of the
+// text), its quotes found in one 64-byte load; `next`: past it and the spaces after it. False:
+// not read here (another form than read_three()'s, or longer), which read_three() then reads or refuses.
+template <bool kSimd, class T, size_t NT, size_t NA>
+bool read_three_at(const char* p, const char* end, const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3],
+                   const char*& next) {
+  const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16));
+  const __m128i c = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 32));
+  const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 48));
+  uint64_t quotes = mask64(a, b, c, d, '"');
+  // `<tag name0="`: its quote is the first
+  constexpr int kFirst = static_cast<int>(NT - 1 + NA - 2);
+  if (std::memcmp(p, tag, NT - 1) != 0 || std::memcmp(p + NT - 1, names[0], NA - 1) != 0) return false;
+  int at[6];
+  at[0] = kFirst;
+  quotes &= ~((uint64_t{2} << kFirst) - 1);
+  for (int k = 1; k < 6; k += 2) {
+    if (quotes == 0) return false;
+    at[k] = std::countr_zero(quotes);  // the value's closing quote
+    if (k == 5) break;
+    // `" name="`: the next value's opening quote
+    if (std::memcmp(p + at[k] + 1, names[(k + 1) / 2], NA - 1) != 0) return false;
+    at[k + 1] = at[k] + static_cast<int>(NA) - 1;
+    if (at[k + 1] >= 63) return false;  // the next value begins past the 64 bytes
+    quotes &= ~((uint64_t{2} << at[k + 1]) - 1);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const char* const from = p + at[2 * k] + 1;
+    const char* const to = p + at[2 * k + 1];
+    if constexpr (std::is_same_v<T, float>) {
+      if (!(kSimd ? value_ssse3(from, to, end, out[k]) : value(from, to, end, out[k]))) return false;
+    } else if (!value(from, to, end, out[k])) {
+      return false;
+    }
+  }
+  const char* r = p + at[5] + 1;
+  while (r < end && space(*r)) ++r;
+  if (end - r < 18 || r[0] != '/' || r[1] != '>') return false;  // 18: "/>" and the 16 bytes read after
+  r += 2;
+  next = r + leading_spaces(r);
+  return true;
+}
+
+// read_three_at() on element after element from q (begun before `stop`), the values handed to
+// `put`, which says whether to go on: where it stopped (at an element it did not read).
+template <bool kSimd, class T, size_t NT, size_t NA, class Put>
+const char* run_at(const char* q, const char* stop, const char* end, const char (&tag)[NT],
+                   const char (&names)[3][NA], Put& put) {
+  T v[3];
+  while (q < stop) {
+    const char* next = nullptr;
+    if (!read_three_at<kSimd>(q, end, tag, names, v, next) || !put(v)) break;
+    q = next;
+  }
+  return q;
+}
+
+// The same, compiled for SSSE3 as a whole (value_ssse3() read inline).
+template <class T, size_t NT, size_t NA, class Put>
+__attribute__((target("ssse3"))) const char* run_at_ssse3(const char* q, const char* stop, const char* end,
+                                                          const char (&tag)[NT], const char (&names)[3][NA],
+                                                          Put& put) {
+  return run_at<true, T>(q, stop, end, tag, names, put);
+}
+#endif
 
 // A cursor over the XML text that reads the few forms a plain mesh is written in.
 class Scanner {
@@ -188,20 +422,41 @@ class Scanner {
   // and the cursor past the tag; false (the cursor unmoved) for any other form.
   template <class T, size_t NT, size_t NA>
   bool three(const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3]) {
-    if (!at(tag, i_)) return false;
-    size_t i = i_ + NT - 1;
-    const char* end = s_.data() + s_.size();
-    for (int k = 0; k < 3; ++k) {
-      if (!at(names[k], i)) return false;
-      i += NA - 1;
-      const char* p = number(s_.data() + i, end, out[k]);
-      if (!p || p == end || *p != '"') return false;
-      i = static_cast<size_t>(p - s_.data()) + 1;
-    }
-    while (i < s_.size() && space(s_[i])) ++i;
-    if (!at("/>", i)) return false;
-    i_ = i + 2;
+    const char* p = s_.data() + i_;
+    if (!read_three(p, s_.data() + s_.size(), tag, names, out)) return false;
+    i_ = static_cast<size_t>(p - s_.data());
     return true;
+  }
+  // three() on element after element, the spaces between them skipped, each element begun
+  // before `limit` (as the runs below begin theirs), its values handed to `put`, which says
+  // whether to go on; the cursor is left where three() did not read (at an element of another
+  // form, or a closing tag, or the spaces before it).
+  template <class T, size_t NT, size_t NA, class Put>
+  void plain_run(const char (&tag)[NT], const char (&names)[3][NA], size_t limit, Put put) {
+    const char* const begin = s_.data();
+    const char* const end = begin + s_.size();
+    const char* p = begin + i_;
+    // Where an element may begin: before `limit`, and far enough from the end for the 64 bytes
+    // read at once (and the loads of their values: kSlack).
+    const char* const stop = begin + std::min(limit, s_.size() - std::min(s_.size(), kSlack));
+    T v[3];
+#if defined(__SSE2__)
+    const bool simd = use_ssse3();
+#endif
+    while (p < stop) {
+      const char* q = p + leading_spaces(p);
+#if defined(__SSE2__)
+      // Elements whose values lie between the quotes one 64-byte load finds (the coordinates
+      // read with SSSE3 where the CPU has it); read_three() below reads or refuses the others.
+      if constexpr (std::endian::native == std::endian::little) {
+        p = q = simd ? run_at_ssse3<T>(q, stop, end, tag, names, put) : run_at<false, T>(q, stop, end, tag, names, put);
+        if (q >= stop) break;
+      }
+#endif
+      if (!read_three(q, end, tag, names, v) || !put(v)) break;
+      p = q;
+    }
+    i_ = static_cast<size_t>(p - begin);
   }
   // `<name ...>` (not closed by itself), its attributes ignored.
   template <size_t N>
@@ -262,10 +517,15 @@ bool number_like(std::string_view v, bool index) {
 // `limit`.
 Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
   for (;;) {
+    static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
+    sc.plain_run<float>("<vertex", kXyz, limit, [&](const float(&v)[3]) {
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return false;
+      out.insert(out.end(), v, v + 3);
+      return true;
+    });
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
     if (sc.eat("</vertices>")) return Run::kDone;
-    static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
     float xyz[3];
     if (sc.three("<vertex", kXyz, xyz)) {
       if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return Run::kFailed;
@@ -295,10 +555,14 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
 // element is begun only before `limit`.
 Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t limit, Bad& bad) {
   for (;;) {
+    static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
+    sc.plain_run<uint32_t>("<triangle", kV123, limit, [&](const uint32_t(&t)[3]) {
+      out.push_back({t[0], t[1], t[2]});
+      return true;
+    });
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
     if (sc.eat("</triangles>")) return Run::kDone;
-    static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
       out.push_back({v[0], v[1], v[2]});
@@ -736,6 +1000,8 @@ std::optional<SplitModel> split_meshes_streamed(Chunks& chunks) {
   Window w(chunks);
   return split_streamed(w);
 }
+
+void allow_simd(bool allowed) { simd_allowed.store(allowed); }
 
 std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c) {
   if (a[1] != kMarkY || a[2] != 0 || b[0] != a[0] || b[1] != kMarkY + 1 || b[2] != 0 || c[0] != a[0] ||
