@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <type_traits>
 #include <bit>
 #include <cfloat>
 #include <charconv>
@@ -134,78 +133,10 @@ const char* number(const char* p, const char* end, float& out) {
   return ec == std::errc() ? e : nullptr;
 }
 
-template <class T>
-bool parse(std::string_view v, T& out) {
-  return number(v.data(), v.data() + v.size(), out) == v.data() + v.size();
-}
-
-// The bytes past an element's start that the fast reading below may load at once.
-constexpr size_t kSlack = 128;
-
-std::atomic<bool> simd_allowed{true};  // allow_simd()
-
-// Whether [p, end) begins with `lit` (a literal: its length is known when compiling).
-template <size_t N>
-bool starts(const char* p, const char* end, const char (&lit)[N]) {
-  return end - p >= static_cast<ptrdiff_t>(N - 1) && std::memcmp(p, lit, N - 1) == 0;
-}
-
-// How many of the 16 bytes at p are XML spaces before the first that is not (16: all are).
-int leading_spaces(const char* p) {
-#if defined(__SSE2__)
-  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-  const __m128i s = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(x, _mm_set1_epi8(' ')), _mm_cmpeq_epi8(x, _mm_set1_epi8('\t'))),
-                                 _mm_or_si128(_mm_cmpeq_epi8(x, _mm_set1_epi8('\n')), _mm_cmpeq_epi8(x, _mm_set1_epi8('\r'))));
-  return std::countr_one(static_cast<unsigned>(_mm_movemask_epi8(s)) & 0xFFFFu);
-#else
-  int n = 0;
-  while (n < 16 && space(p[n])) ++n;
-  return n;
-#endif
-}
-
-// The form most writers use, `<vertex x="1" y="2" z="3"/>` or `<triangle v1="0" v2="1" v3="2" />`
-// (`names` holds the three attributes' ` name="` in order), at p: its values, and p moved past
-// it; false (p unmoved) for any other form.
-template <class T, size_t NT, size_t NA>
-bool read_three(const char*& p, const char* end, const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3]) {
-  if (!starts(p, end, tag)) return false;
-  const char* q = p + NT - 1;
-  for (int k = 0; k < 3; ++k) {
-    if (!starts(q, end, names[k])) return false;
-    q = number(q + NA - 1, end, out[k]);
-    if (!q || q == end || *q != '"') return false;
-    ++q;
-  }
-  while (q < end && space(*q)) ++q;
-  if (!starts(q, end, "/>")) return false;
-  p = q + 2;
-  return true;
-}
+// Whether the scanner reads coordinates with SSSE3 where the CPU has it (allow_simd()).
+std::atomic<bool> simd_allowed{true};
 
 #if defined(__SSE2__)
-// Bit i set where p[i] == c, for i below 64.
-uint64_t mask64(__m128i a, __m128i b, __m128i c, __m128i d, char ch) {
-  const __m128i x = _mm_set1_epi8(ch);
-  return static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(a, x)))) |
-         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(b, x)))) << 16 |
-         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(c, x)))) << 32 |
-         static_cast<uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(d, x)))) << 48;
-}
-
-// The value between a value's quotes [a, b) (at least kSlack bytes before the end of the text),
-// as number() reads it to b; false: it is not a number (or not all of [a, b) is).
-bool value(const char* a, const char* b, const char* end, uint32_t& out) {
-  const ptrdiff_t n = b - a;
-  uint64_t chunk;
-  std::memcpy(&chunk, a, 8);
-  if (n >= 1 && n <= 8 && leading_digits(chunk) == n) {
-    out = digits_value(chunk, static_cast<int>(n));
-    return true;
-  }
-  return number(a, end, out) == b;
-}
-
 bool use_ssse3() {
 #if defined(__GNUC__)
   static const bool has = __builtin_cpu_supports("ssse3");
@@ -215,12 +146,16 @@ bool use_ssse3() {
 #endif
 }
 
-// value() of a coordinate with SSSE3 (the byte shuffle): the sign and point taken out and the
-// digits converted 16 at a time (pairs, fours, eights). The same results as value() below.
-__attribute__((target("ssse3"))) bool value_ssse3(const char* a, const char* b, const char* end, float& out) {
-  const int n = static_cast<int>(b - a);
-  if (n >= 1 && n <= 16) {
-    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
+// number() of a coordinate followed by its closing quote within 16 bytes, with SSSE3 (the byte
+// shuffle): the sign and point taken out, the digits converted at once (pairs, fours, eights),
+// then as number(). The same results as number(), which reads every other form.
+__attribute__((target("ssse3"))) const char* number_ssse3(const char* a, const char* end, float& out) {
+  if (end - a < 16) return number(a, end, out);
+  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
+  const unsigned quotes = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('"'))));
+  const int n = quotes ? std::countr_zero(quotes) : 16;  // up to the closing quote
+  const char* const b = a + n;
+  if (n >= 1 && n <= 15) {
     const unsigned in = (1u << n) - 1;  // the value's bytes
     const int minus = *a == '-';
     const unsigned dots = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
@@ -255,118 +190,28 @@ __attribute__((target("ssse3"))) bool value_ssse3(const char* a, const char* b, 
       constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
       if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
         out = minus ? -f : f;
-        return true;
+        return b;
       }
     }
   }
-  return number(a, end, out) == b;
+  return number(a, end, out);
 }
 
-bool value(const char* a, const char* b, const char* end, float& out) {
-  // As number(): [-]digits[.digits], here at most 7 digits before the point and 7 after.
-  static constexpr uint64_t kPow10[8] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
-  static constexpr double kTenth[8] = {1e0, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7};
-  const bool minus = *a == '-';
-  const char* q = a + minus;
-  uint64_t chunk;
-  std::memcpy(&chunk, q, 8);
-  const int whole = leading_digits(chunk);
-  if (whole > 0 && whole < 8) {
-    uint64_t m = digits_value(chunk, whole);
-    int k = 0;
-    q += whole;
-    if (q != b && *q == '.') {
-      std::memcpy(&chunk, q + 1, 8);
-      k = leading_digits(chunk);
-      if (k > 0 && k < 8) m = m * kPow10[k] + digits_value(chunk, k);
-      q += 1 + k;
-    }
-    if (q == b && k < 8) {
-      const double d = static_cast<double>(m) * kTenth[k];
-      uint64_t bits;
-      std::memcpy(&bits, &d, sizeof bits);
-      const float f = static_cast<float>(d);
-      constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
-      if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
-        out = minus ? -f : f;
-        return true;
-      }
-    }
-  }
-  return number(a, end, out) == b;
-}
-
-// read_three() on the element at p ('<' there, at least kSlack bytes before the end of the
-// text), its quotes found in one 64-byte load; `next`: past it and the spaces after it. False:
-// not read here (another form than read_three()'s, or longer), which read_three() then reads or refuses.
-template <bool kSimd, class T, size_t NT, size_t NA>
-bool read_three_at(const char* p, const char* end, const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3],
-                   const char*& next) {
-  const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-  const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16));
-  const __m128i c = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 32));
-  const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 48));
-  uint64_t quotes = mask64(a, b, c, d, '"');
-  // `<tag name0="`: its quote is the first
-  constexpr int kFirst = static_cast<int>(NT - 1 + NA - 2);
-  if (std::memcmp(p, tag, NT - 1) != 0 || std::memcmp(p + NT - 1, names[0], NA - 1) != 0) return false;
-  int at[6];
-  at[0] = kFirst;
-  quotes &= ~((uint64_t{2} << kFirst) - 1);
-  for (int k = 1; k < 6; k += 2) {
-    if (quotes == 0) return false;
-    at[k] = std::countr_zero(quotes);  // the value's closing quote
-    if (k == 5) break;
-    // `" name="`: the next value's opening quote
-    if (std::memcmp(p + at[k] + 1, names[(k + 1) / 2], NA - 1) != 0) return false;
-    at[k + 1] = at[k] + static_cast<int>(NA) - 1;
-    if (at[k + 1] >= 63) return false;  // the next value begins past the 64 bytes
-    quotes &= ~((uint64_t{2} << at[k + 1]) - 1);
-  }
-  for (int k = 0; k < 3; ++k) {
-    const char* const from = p + at[2 * k] + 1;
-    const char* const to = p + at[2 * k + 1];
-    if constexpr (std::is_same_v<T, float>) {
-      if (!(kSimd ? value_ssse3(from, to, end, out[k]) : value(from, to, end, out[k]))) return false;
-    } else if (!value(from, to, end, out[k])) {
-      return false;
-    }
-  }
-  const char* r = p + at[5] + 1;
-  while (r < end && space(*r)) ++r;
-  if (end - r < 18 || r[0] != '/' || r[1] != '>') return false;  // 18: "/>" and the 16 bytes read after
-  r += 2;
-  next = r + leading_spaces(r);
-  return true;
-}
-
-// read_three_at() on element after element from q (begun before `stop`), the values handed to
-// `put`, which says whether to go on: where it stopped (at an element it did not read).
-template <bool kSimd, class T, size_t NT, size_t NA, class Put>
-const char* run_at(const char* q, const char* stop, const char* end, const char (&tag)[NT],
-                   const char (&names)[3][NA], Put& put) {
-  T v[3];
-  while (q < stop) {
-    const char* next = nullptr;
-    if (!read_three_at<kSimd>(q, end, tag, names, v, next) || !put(v)) break;
-    q = next;
-  }
-  return q;
-}
-
-// The same, compiled for SSSE3 as a whole (value_ssse3() read inline).
-template <class T, size_t NT, size_t NA, class Put>
-__attribute__((target("ssse3"))) const char* run_at_ssse3(const char* q, const char* stop, const char* end,
-                                                          const char (&tag)[NT], const char (&names)[3][NA],
-                                                          Put& put) {
-  return run_at<true, T>(q, stop, end, tag, names, put);
-}
 #endif
+
+template <class T>
+bool parse(std::string_view v, T& out) {
+  return number(v.data(), v.data() + v.size(), out) == v.data() + v.size();
+}
 
 // A cursor over the XML text that reads the few forms a plain mesh is written in.
 class Scanner {
  public:
-  Scanner(std::string_view s, size_t at) : s_(s), i_(at) {}
+  Scanner(std::string_view s, size_t at) : s_(s), i_(at) {
+#if defined(__SSE2__)
+    simd_ = use_ssse3();
+#endif
+  }
   size_t pos() const { return i_; }
   void skip_space() {
     while (i_ < s_.size() && space(s_[i_])) ++i_;
@@ -422,41 +267,28 @@ class Scanner {
   // and the cursor past the tag; false (the cursor unmoved) for any other form.
   template <class T, size_t NT, size_t NA>
   bool three(const char (&tag)[NT], const char (&names)[3][NA], T (&out)[3]) {
-    const char* p = s_.data() + i_;
-    if (!read_three(p, s_.data() + s_.size(), tag, names, out)) return false;
-    i_ = static_cast<size_t>(p - s_.data());
+    if (!at(tag, i_)) return false;
+    size_t i = i_ + NT - 1;
+    const char* end = s_.data() + s_.size();
+    for (int k = 0; k < 3; ++k) {
+      if (!at(names[k], i)) return false;
+      i += NA - 1;
+      const char* p = read_number(s_.data() + i, end, out[k]);
+      if (!p || p == end || *p != '"') return false;
+      i = static_cast<size_t>(p - s_.data()) + 1;
+    }
+    while (i < s_.size() && space(s_[i])) ++i;
+    if (!at("/>", i)) return false;
+    i_ = i + 2;
     return true;
   }
-  // three() on element after element, the spaces between them skipped, each element begun
-  // before `limit` (as the runs below begin theirs), its values handed to `put`, which says
-  // whether to go on; the cursor is left where three() did not read (at an element of another
-  // form, or a closing tag, or the spaces before it).
-  template <class T, size_t NT, size_t NA, class Put>
-  void plain_run(const char (&tag)[NT], const char (&names)[3][NA], size_t limit, Put put) {
-    const char* const begin = s_.data();
-    const char* const end = begin + s_.size();
-    const char* p = begin + i_;
-    // Where an element may begin: before `limit`, and far enough from the end for the 64 bytes
-    // read at once (and the loads of their values: kSlack).
-    const char* const stop = begin + std::min(limit, s_.size() - std::min(s_.size(), kSlack));
-    T v[3];
+  // number(), coordinates with SSSE3 where the CPU has it (number_ssse3()).
+  const char* read_number(const char* p, const char* end, uint32_t& out) const { return number(p, end, out); }
+  const char* read_number(const char* p, const char* end, float& out) const {
 #if defined(__SSE2__)
-    const bool simd = use_ssse3();
+    if (simd_) return number_ssse3(p, end, out);
 #endif
-    while (p < stop) {
-      const char* q = p + leading_spaces(p);
-#if defined(__SSE2__)
-      // Elements whose values lie between the quotes one 64-byte load finds (the coordinates
-      // read with SSSE3 where the CPU has it); read_three() below reads or refuses the others.
-      if constexpr (std::endian::native == std::endian::little) {
-        p = q = simd ? run_at_ssse3<T>(q, stop, end, tag, names, put) : run_at<false, T>(q, stop, end, tag, names, put);
-        if (q >= stop) break;
-      }
-#endif
-      if (!read_three(q, end, tag, names, v) || !put(v)) break;
-      p = q;
-    }
-    i_ = static_cast<size_t>(p - begin);
+    return number(p, end, out);
   }
   // `<name ...>` (not closed by itself), its attributes ignored.
   template <size_t N>
@@ -469,6 +301,7 @@ class Scanner {
  private:
   std::string_view s_;
   size_t i_;
+  [[maybe_unused]] bool simd_ = false;  // read_number() with SSSE3
 };
 
 // How reading a run of elements ended: at its closing tag, at an element it does not read, or
@@ -517,15 +350,10 @@ bool number_like(std::string_view v, bool index) {
 // `limit`.
 Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
   for (;;) {
-    static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
-    sc.plain_run<float>("<vertex", kXyz, limit, [&](const float(&v)[3]) {
-      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return false;
-      out.insert(out.end(), v, v + 3);
-      return true;
-    });
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
     if (sc.eat("</vertices>")) return Run::kDone;
+    static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
     float xyz[3];
     if (sc.three("<vertex", kXyz, xyz)) {
       if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return Run::kFailed;
@@ -555,14 +383,10 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
 // element is begun only before `limit`.
 Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t limit, Bad& bad) {
   for (;;) {
-    static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
-    sc.plain_run<uint32_t>("<triangle", kV123, limit, [&](const uint32_t(&t)[3]) {
-      out.push_back({t[0], t[1], t[2]});
-      return true;
-    });
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
     if (sc.eat("</triangles>")) return Run::kDone;
+    static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
     if (sc.three("<triangle", kV123, v)) {
       out.push_back({v[0], v[1], v[2]});

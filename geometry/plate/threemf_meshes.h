@@ -12,9 +12,9 @@
 // is wrong with it, as before.
 //
 // The objects' meshes are read in parallel (TBB), with the result one pass in order would give;
-// numbers are read to the value std::from_chars gives (the common forms without it: an element's
-// quotes found in one 64-byte load, indices eight digits at a time, coordinates up to 16 bytes at
-// a time with SSSE3 where the CPU has it; the others by it).
+// numbers are read to the value std::from_chars gives (the common forms without it: indices eight
+// digits at a time, coordinates with SSSE3 where the CPU has it, their 16 bytes at once; the
+// others by it).
 #pragma once
 
 #include <array>

@@ -298,7 +298,7 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
       "16777217", "16777219", "-16777217.00", "8388609.5",  // exactly halfway between two floats
       "0.1", "0.2", "0.3", "123456.789012345", "1234567890123456789", "0.000000000000000000001",
       "3.141592653589793238462643383279",
-      // elements longer than the 64 bytes the scanner looks at once: its quotes past them
+      // longer than the 16 bytes the scanner converts at once
       "1.0000000000000000000000000000000000000000000000001", "-12.50000000000000000000000000000000000000000000000",
       "0.000000000000000000000000000000000000100000000000000000000000000000"};
   std::mt19937 rng(1313);
