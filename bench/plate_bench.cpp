@@ -174,7 +174,8 @@ int load(const std::string& dir, int runs) {
     if (!in) return fail(in.error().to_string());
     for (;;) {
       constexpr size_t kChunk = size_t{1} << 20;
-      auto& m = inflated.memory.emplace_back(std::make_unique_for_overwrite<char[]>(Inflated::kRoom + kChunk));
+      auto& m =
+          inflated.memory.emplace_back(std::make_unique_for_overwrite<char[]>(Inflated::kRoom + kChunk));
       size_t got = 0;
       while (got < kChunk) {
         auto n = in->read(m.get() + Inflated::kRoom + got, kChunk - got);
@@ -220,9 +221,11 @@ int load(const std::string& dir, int runs) {
              "floor of the CPU time)\n",
              "  inflating its model part only", "", model_bytes / 1e6, inflate_s, inflate_s / stl_s, inflate_cpu,
              inflate_cpu / stl_cpu);
-  fmt::print("{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (inflated beforehand; {:.1f} GB/s of XML)\n",
-             "  reading its meshes only", "", model_bytes / 1e6, scan_s, scan_s / stl_s, scan_cpu, scan_cpu / stl_cpu,
-             model_bytes / scan_cpu / 1e9);
+  fmt::print(
+      "{:<34} {:>10} {:>9.1f} {:>9.3f} {:>8.2f} {:>7.3f} {:>8.2f}   (inflated beforehand; {:.1f} GB/s of "
+      "XML)\n",
+      "  reading its meshes only", "", model_bytes / 1e6, scan_s, scan_s / stl_s, scan_cpu,
+      scan_cpu / stl_cpu, model_bytes / scan_cpu / 1e9);
   fmt::print("{:<34} {:>10} {:>9} {:>9.3f} {:>8.2f}   (lib3mf's XML reader, inflating included)\n",
              "  lib3mf reading the package only", "", "", lib3mf_s, lib3mf_s / stl_s);
   return 0;

@@ -115,8 +115,8 @@ const char* number(const char* p, const char* end, float& out) {
     k = append_digits(q, end, m);
     digits += k;
   }
-  static constexpr double kTenth[] = {1e0,   1e-1,  1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
-                                      1e-8,  1e-9,  1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+  static constexpr double kTenth[] = {1e0,  1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+                                      1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
   const bool plain = digits > 0 && digits <= 15 && (q == end || (*q != 'e' && *q != 'E' && !digit(*q)));
   if (plain) {
     const double d = static_cast<double>(m) * kTenth[k];
@@ -158,30 +158,34 @@ __attribute__((target("ssse3"))) const char* number_ssse3(const char* a, const c
   if (n >= 1 && n <= 15) {
     const unsigned in = (1u << n) - 1;  // the value's bytes
     const int minus = *a == '-';
-    const unsigned dots = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
+    const unsigned dots =
+        static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
     const int point = dots ? std::countr_zero(dots) : n;  // where the point is (n: none)
     const int whole = point - minus;                      // digits before it
     const int digits = n - minus - (dots ? 1 : 0);
     const __m128i d = _mm_sub_epi8(x, _mm_set1_epi8('0'));
-    const unsigned is_digit =
-        static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
-    const unsigned need = in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
+    const unsigned is_digit = static_cast<unsigned>(
+        _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
+    const unsigned need =
+        in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
     if (whole > 0 && digits <= 15 && (is_digit & need) == need) {
       // Output byte o holds digit t = o - (16 - digits) (from the byte after the sign, skipping the
       // point); those before the first digit are zeros.
       const __m128i t = _mm_add_epi8(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
                                      _mm_set1_epi8(static_cast<char>(digits - 16)));
       const __m128i after_point = _mm_cmpgt_epi8(t, _mm_set1_epi8(static_cast<char>(whole - 1)));
-      const __m128i from = _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
+      const __m128i from =
+          _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
       const __m128i control = _mm_or_si128(from, _mm_cmpgt_epi8(_mm_setzero_si128(), t));  // negative: a zero
       const __m128i v = _mm_shuffle_epi8(d, control);
-      const __m128i pairs = _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
+      const __m128i pairs =
+          _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
       const __m128i fours = _mm_madd_epi16(pairs, _mm_setr_epi16(100, 1, 100, 1, 100, 1, 100, 1));
       const __m128i packed = _mm_packs_epi32(fours, fours);  // each below 10^4
       const __m128i eights = _mm_madd_epi16(packed, _mm_setr_epi16(10000, 1, 10000, 1, 10000, 1, 10000, 1));
       const uint64_t both = static_cast<uint64_t>(_mm_cvtsi128_si64(eights));
       const uint64_t m = (both & 0xFFFFFFFF) * 100000000 + (both >> 32);
-      static constexpr double kTenth[] = {1e0, 1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+      static constexpr double kTenth[] = {1e0,  1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
                                           1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
       const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[digits - whole];
       uint64_t bits;

@@ -293,13 +293,14 @@ bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in every form") {
   std::vector<std::string> texts = {
-      "0", "-0", "1", "-1.5", "19.000000", "18.998026", "0.125643", "5.", "007.250", "1e1", "1.5E-3", "-2.5e+2",
-      "3.4028234e38", "1e-40",  // a subnormal float: from_chars reads it
+      "0", "-0", "1", "-1.5", "19.000000", "18.998026", "0.125643", "5.", "007.250", "1e1", "1.5E-3",
+      "-2.5e+2", "3.4028234e38", "1e-40",                   // a subnormal float: from_chars reads it
       "16777217", "16777219", "-16777217.00", "8388609.5",  // exactly halfway between two floats
       "0.1", "0.2", "0.3", "123456.789012345", "1234567890123456789", "0.000000000000000000001",
       "3.141592653589793238462643383279",
       // longer than the 16 bytes the scanner converts at once
-      "1.0000000000000000000000000000000000000000000000001", "-12.50000000000000000000000000000000000000000000000",
+      "1.0000000000000000000000000000000000000000000000001",
+      "-12.50000000000000000000000000000000000000000000000",
       "0.000000000000000000000000000000000000100000000000000000000000000000"};
   std::mt19937 rng(1313);
   std::uniform_real_distribution<double> u(-500, 500);
@@ -329,7 +330,8 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
     if (point == n && coin(rng) == 0) t += '.';  // "5."
     texts.push_back(t);
   }
-  for (const bool simd : {true, false}) {  // with the CPU's SSSE3 instructions (where it has them) and without
+  // With the CPU's SSSE3 instructions (where it has them) and without.
+  for (const bool simd : {true, false}) {
     CAPTURE(simd);
     threemf::allow_simd(simd);
     const std::vector<float> got = scanned_x(texts);
@@ -348,7 +350,7 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
     }
     CHECK(wrong == 0);
     CHECK(same_bits(got[1], 0.0f));  // "-0"
-    CHECK(got[14] == 16777216.0f);  // halfway: to even
+    CHECK(got[14] == 16777216.0f);   // halfway: to even
     CHECK(got[15] == 16777220.0f);
   }
 }
