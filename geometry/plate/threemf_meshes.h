@@ -12,8 +12,9 @@
 // is wrong with it, as before.
 //
 // The objects' meshes are read in parallel (TBB), with the result one pass in order would give;
-// numbers are read to the value std::from_chars gives (the common forms without it, eight digits
-// at a time; the others by it).
+// numbers are read to the value std::from_chars gives (the common forms without it: indices eight
+// digits at a time, coordinates with SSSE3 where the CPU has it, their 16 bytes at once; the
+// others by it).
 #pragma once
 
 #include <array>
@@ -80,6 +81,10 @@ class Chunks {
 
 // split_meshes_streamed on chunks: the same result, or nothing where it gives nothing.
 std::optional<SplitModel> split_meshes_streamed(Chunks& chunks);
+
+// Whether the scanner may read coordinates with the CPU's SSSE3 instructions where it has them
+// (the default); the numbers are the same either way, which the tests check both ways.
+void allow_simd(bool allowed);
 
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
 // (x, y, z each), if it is one.

@@ -324,7 +324,8 @@ class ReadAhead : public Chunks {
  public:
   explicit ReadAhead(ZipStream& in) : in_(in) {
     for (int i = 0; i < kChunks; ++i) {
-      memory_.push_back(std::make_unique<char[]>(kRoom + kChunk));
+      // Not zeroed: every byte is written before it is read.
+      memory_.push_back(std::make_unique_for_overwrite<char[]>(kRoom + kChunk));
       free_.push_back(memory_.back().get());
     }
     thread_ = std::thread([this] { run(); });

@@ -293,11 +293,15 @@ bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in every form") {
   std::vector<std::string> texts = {
-      "0", "-0", "1", "-1.5", "19.000000", "18.998026", "0.125643", "5.", "007.250", "1e1", "1.5E-3", "-2.5e+2",
-      "3.4028234e38", "1e-40",  // a subnormal float: from_chars reads it
+      "0", "-0", "1", "-1.5", "19.000000", "18.998026", "0.125643", "5.", "007.250", "1e1", "1.5E-3",
+      "-2.5e+2", "3.4028234e38", "1e-40",                   // a subnormal float: from_chars reads it
       "16777217", "16777219", "-16777217.00", "8388609.5",  // exactly halfway between two floats
       "0.1", "0.2", "0.3", "123456.789012345", "1234567890123456789", "0.000000000000000000001",
-      "3.141592653589793238462643383279"};
+      "3.141592653589793238462643383279",
+      // longer than the 16 bytes the scanner converts at once
+      "1.0000000000000000000000000000000000000000000000001",
+      "-12.50000000000000000000000000000000000000000000000",
+      "0.000000000000000000000000000000000000100000000000000000000000000000"};
   std::mt19937 rng(1313);
   std::uniform_real_distribution<double> u(-500, 500);
   for (int i = 0; i < 3000; ++i) {
@@ -312,23 +316,43 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
     texts.push_back(fmt::format("{:.{}g}", half, 13 + i % 3));
     texts.push_back(fmt::format("{:.{}f}", half, 9 + i % 3));
   }
-  const std::vector<float> got = scanned_x(texts);
-  REQUIRE(got.size() == texts.size());
-  int wrong = 0;
-  for (size_t i = 0; i < texts.size(); ++i) {
-    float want = 0;
-    const auto [end, ec] = std::from_chars(texts[i].data(), texts[i].data() + texts[i].size(), want);
-    REQUIRE(ec == std::errc());
-    REQUIRE(end == texts[i].data() + texts[i].size());
-    if (want == 0) want = 0.0f;  // in the welder's order -0 is +0, as in every welded mesh
-    if (!same_bits(got[i], want)) {
-      if (++wrong < 10) MESSAGE(texts[i], ": ", got[i], " instead of ", want);
+  // Digit strings of every length up to 17, some signed, most with a point after any digit (the
+  // scanner converts up to 16 bytes at once), zeros often.
+  std::uniform_int_distribution<int> len(1, 17), digit(0, 9), coin(0, 3);
+  for (int i = 0; i < 4000; ++i) {
+    const int n = len(rng);
+    const int point = coin(rng) == 0 ? n : std::uniform_int_distribution<int>(1, n)(rng);  // digits before it
+    std::string t = coin(rng) == 0 ? "-" : "";
+    for (int k = 0; k < n; ++k) {
+      if (k == point) t += '.';
+      t += static_cast<char>('0' + (coin(rng) == 0 ? 0 : digit(rng)));
     }
+    if (point == n && coin(rng) == 0) t += '.';  // "5."
+    texts.push_back(t);
   }
-  CHECK(wrong == 0);
-  CHECK(same_bits(got[1], 0.0f));  // "-0"
-  CHECK(got[14] == 16777216.0f);  // halfway: to even
-  CHECK(got[15] == 16777220.0f);
+  // With the CPU's SSSE3 instructions (where it has them) and without.
+  for (const bool simd : {true, false}) {
+    CAPTURE(simd);
+    threemf::allow_simd(simd);
+    const std::vector<float> got = scanned_x(texts);
+    threemf::allow_simd(true);
+    REQUIRE(got.size() == texts.size());
+    int wrong = 0;
+    for (size_t i = 0; i < texts.size(); ++i) {
+      float want = 0;
+      const auto [end, ec] = std::from_chars(texts[i].data(), texts[i].data() + texts[i].size(), want);
+      REQUIRE(ec == std::errc());
+      REQUIRE(end == texts[i].data() + texts[i].size());
+      if (want == 0) want = 0.0f;  // in the welder's order -0 is +0, as in every welded mesh
+      if (!same_bits(got[i], want)) {
+        if (++wrong < 10) MESSAGE(texts[i], ": ", got[i], " instead of ", want);
+      }
+    }
+    CHECK(wrong == 0);
+    CHECK(same_bits(got[1], 0.0f));  // "-0"
+    CHECK(got[14] == 16777216.0f);   // halfway: to even
+    CHECK(got[15] == 16777220.0f);
+  }
 }
 
 TEST_CASE("3mf meshes: indices are read as std::from_chars reads them; too large ones are left to lib3mf") {
