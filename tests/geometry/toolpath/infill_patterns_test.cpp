@@ -246,6 +246,62 @@ TEST_CASE("infill patterns: concentric loops follow the border inward") {
 }
 
 
+namespace {
+// A circle of `n` points, counter-clockwise (clockwise with ccw false).
+geo::Ring disc(double cx, double cy, double r, int n, bool ccw = true) {
+  geo::Ring ring;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n * (ccw ? 1 : -1);
+    ring.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return ring;
+}
+}  // namespace
+
+// Concentric loops go inward until the region is too narrow for the next one; the parts of a
+// region that the next step would shrink to nothing are left out before it (a disc of radius
+// below the pitch, an annulus, with its hole), which must not change the loops of the others:
+// the loops over a region of several parts are those of each part alone. Parts: a 40 mm frame
+// round a 16 mm hole, in the frame a 1.3 mm hole; in the hole, a disc of 3 mm (loops at 2.775
+// and 0.525 mm); above the frame, an annulus 2 to 0.8 mm (one loop round it, two rings; at the
+// next step its outer ring is too thin, and its hole, left alone, would be the region's
+// outermost ring, which would turn the whole list the other way round: offset's orientation).
+TEST_CASE("infill patterns: concentric loops of a region's parts are those of each part alone") {
+  const std::vector<geo::Rings> parts{
+      {test::rect(0, 0, 40, 40), test::rect(12, 12, 28, 28, false), disc(6, 6, 1.3, 64, false)},
+      {disc(16, 16, 3, 128)},
+      {disc(20, 44, 2.0, 96), disc(20, 44, 0.8, 64, false)},
+  };
+  geo::Rings all;
+  double alone_len = 0;
+  size_t alone_pts = 0;
+  for (const auto& part : parts) {
+    auto fps = pattern_fill(fill_shape(part, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
+    REQUIRE(!fps.empty());
+    CHECK(all_inside(fps, part, 0.001));
+    alone_len += length_mm(fps);
+    for (const auto& fp : fps) alone_pts += fp.pts.size();
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  auto fps = pattern_fill(fill_shape(all, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
+  CHECK(all_inside(fps, all, 0.001));
+  size_t pts = 0;
+  for (const auto& fp : fps) pts += fp.pts.size();
+  CHECK(pts == alone_pts);
+  CHECK(length_mm(fps) == doctest::Approx(alone_len).epsilon(1e-5));
+  // The disc's two loops and nothing else inside 2.9 mm of its centre.
+  double r_min = 1e9;
+  int on_inner = 0;
+  for (const auto& fp : fps)
+    for (const auto& q : fp.pts) {
+      const double r = std::hypot(geo::to_mm(q.X) - 16, geo::to_mm(q.Y) - 16);
+      r_min = std::min(r_min, r);
+      if (std::abs(r - 0.525) < 0.03) ++on_inner;
+    }
+  CHECK(r_min == doctest::Approx(0.525).epsilon(0.05));
+  CHECK(on_inner >= 3);
+}
+
 // Honeycomb keeps PrusaSlicer's meaning of the density (FillHoneycomb): hexagons whose opposite
 // sides are 2·spacing/ρ apart (side a = 2·spacing/(√3·ρ)), each wave of the pattern repeating
 // every three sides, its plateaus one spacing from the next wave's and run on by half a spacing
