@@ -239,20 +239,47 @@ std::vector<Ring2> to_ring2(const geo::Rings& rings) {
 // less a band `inset` wide along its artificial edges; each of its edges is artificial when it
 // runs along such a band.
 std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& rings) {
-  geo::Rings cuts;  // runs of artificial edges as open polylines
+  // Runs of artificial edges as open polylines (a ring artificial all round: a closed line), so
+  // that the band is one offset per run: offset edge by edge, the round ends of every two
+  // neighbours overlapped, and the union that cleaned them was most of the clipping's cost.
+  geo::Rings cuts, closed_cuts;
   for (size_t r = 0; r < shape.rings.size(); ++r) {
     const auto& ring = shape.rings[r];
     const size_t n = ring.size();
     if (r >= shape.kinds.size() || n < 3) continue;
-    for (size_t i = 0; i < n; ++i)
-      if (shape.kinds[r][i] == geo::EdgeKind::Artificial) cuts.push_back({ring[i], ring[(i + 1) % n]});
+    const auto& kinds = shape.kinds[r];
+    auto artificial = [&](size_t i) { return kinds[i % n] == geo::EdgeKind::Artificial; };
+    size_t start = n;  // a real edge: runs start after it
+    for (size_t i = 0; i < n && start == n; ++i)
+      if (!artificial(i)) start = i;
+    if (start == n) {
+      closed_cuts.push_back(ring);
+      continue;
+    }
+    geo::Ring run;
+    for (size_t k = 1; k <= n; ++k) {
+      const size_t i = (start + k) % n;
+      if (artificial(i)) {
+        if (run.empty()) run.push_back(ring[i]);
+        run.push_back(ring[(i + 1) % n]);
+      } else if (!run.empty()) {
+        cuts.push_back(std::move(run));
+        run.clear();
+      }
+    }
+    if (!run.empty()) cuts.push_back(std::move(run));
   }
   rings = shape.rings;  // disjoint rings (region_shape's): the clipping reads them even-odd
-  if (cuts.empty() || inset <= 0) return to_ring2(rings);
+  if ((cuts.empty() && closed_cuts.empty()) || inset <= 0) return to_ring2(rings);
   geo::Rings band;
   ClipperLib::ClipperOffset co(2.0, 5000);
   co.AddPaths(cuts, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  co.AddPaths(closed_cuts, ClipperLib::jtRound, ClipperLib::etClosedLine);
   co.Execute(band, inset);
+  // The runs as rings for the edge index (which closes every ring): an open run there and back.
+  for (auto& c : cuts)
+    for (size_t i = c.size() - 1; i-- > 1;) c.push_back(c[i]);
+  cuts.insert(cuts.end(), closed_cuts.begin(), closed_cuts.end());
   rings = difference(rings, band);
   std::vector<Ring2> out = to_ring2(rings);
   const std::vector<Ring2> cut2 = to_ring2(cuts);

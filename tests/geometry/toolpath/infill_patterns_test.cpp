@@ -219,6 +219,56 @@ TEST_CASE("infill patterns: line ends keep half a bead from a cut to a solid reg
   }
 }
 
+// Cuts made of many edges, as the outlines of solid regions sliced from curved meshes are: a run
+// of artificial edges through the ring's first vertex (the last side's upper half and the first
+// side's left half of a square drawn with 20 edges a side), and a hole artificial all round.
+// Every line end keeps half a bead from every cut; lines still reach the real edges.
+TEST_CASE("infill patterns: line ends keep half a bead from runs of cut edges") {
+  geo::Ring outer;
+  const double corners[5][2] = {{0, 0}, {20, 0}, {20, 20}, {0, 20}, {0, 0}};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 20; ++k) {
+      const double t = k / 20.0;
+      outer.push_back(geo::to_point(corners[side][0] + t * (corners[side + 1][0] - corners[side][0]),
+                                    corners[side][1] + t * (corners[side + 1][1] - corners[side][1])));
+    }
+  FillShape shape = fill_shape({outer, test::rect(8, 8, 12, 12, false)}, geo::EdgeKind::Real);
+  for (size_t i = 0; i < 80; ++i)
+    if (i < 10 || i >= 70) shape.kinds[0][i] = geo::EdgeKind::Artificial;
+  for (auto& k : shape.kinds[1]) k = geo::EdgeKind::Artificial;
+  // Distance (mm) from p to the nearest edge of the given kind.
+  auto nearest = [&](const geo::Point& p, geo::EdgeKind kind) {
+    double best = 1e9;
+    for (size_t r = 0; r < shape.rings.size(); ++r) {
+      const auto& ring = shape.rings[r];
+      for (size_t i = 0; i < ring.size(); ++i) {
+        if (shape.kinds[r][i] != kind) continue;
+        const geo::Point &a = ring[i], &b = ring[(i + 1) % ring.size()];
+        const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
+        const double px = geo::to_mm(p.X), py = geo::to_mm(p.Y), dx = bx - ax, dy = by - ay;
+        const double t = std::clamp(((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+        best = std::min(best, std::hypot(px - ax - t * dx, py - ay - t * dy));
+      }
+    }
+    return best;
+  };
+  for (InfillPattern p : kLinePatterns) {
+    CAPTURE(name_of(p));
+    auto fps = pattern_fill(shape, spec_of(p));
+    REQUIRE(!fps.empty());
+    double to_cut = 1e9, to_real = 1e9;
+    for (const auto& fp : fps)
+      for (const auto& pt : fp.pts) {
+        to_cut = std::min(to_cut, nearest(pt, geo::EdgeKind::Artificial));
+        to_real = std::min(to_real, nearest(pt, geo::EdgeKind::Real));
+      }
+    // Concentric loops are simplified to 10 µm and their arcs are chords to 25 µm.
+    CHECK(to_cut >= 0.5 * kSpacing - (p == InfillPattern::Concentric ? 0.03 : 0.005));
+    CHECK(to_cut <= 0.5 * kSpacing + 0.05);
+    if (p != InfillPattern::Concentric) CHECK(to_real <= 0.005);  // concentric: half a bead inside
+  }
+}
+
 TEST_CASE("infill patterns: concentric loops follow the border inward") {
   const geo::Rings sq{test::rect(0, 0, 20, 20)};
   auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
