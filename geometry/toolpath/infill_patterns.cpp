@@ -91,6 +91,7 @@ void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, d
     const double base = j * h;
     const double shift = static_cast<long long>(j) % 2 == 0 ? 0.0 : 1.5 * a;  // odd waves mirrored
     geo::Ring w;
+    w.reserve(static_cast<size_t>(4 * (n1 - n0 + 1)));
     for (double n = n0; n <= n1; n += 1) {
       const double u = n * period + shift;
       w.push_back(f.bed(u - e, base + lo));
@@ -112,8 +113,8 @@ struct GyroidBranch {
   double gz;
   bool swap;
   int fam;
+  double cz = std::cos(gz), sz = std::sin(gz);
   double operator()(double s) const {
-    const double cz = std::cos(gz), sz = std::sin(gz);
     double A, B, C;  // A sin t + B cos t = C
     if (!swap) {     // sin s cos t + cos gz sin t = −sin gz cos s
       A = cz, B = std::sin(s), C = -sz * std::cos(s);
@@ -173,6 +174,7 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
       const double dt = 2 * kPi * k;
       if (hi + dt < t0 || lo + dt > t1) continue;
       geo::Ring ring;
+      ring.reserve(pts.size());
       for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
       out.push_back(std::move(ring));
     }
@@ -295,6 +297,48 @@ std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& 
   return out;
 }
 
+// The cells of a fine grid over a region's bounding box that no edge's bounding box meets: a
+// segment whose bounding box lies in such cells only crosses no edge. A pattern's segments are
+// short (a gyroid's half a millimetre, a honeycomb's side): most lie away from the border, and
+// this answers them without the edge grid's walk (whose cells are sized for the edges).
+class ClearCells {
+ public:
+  ClearCells(const geo::Rings& region, const geo::BBox2& box) : x0_(box.min_x), y0_(box.min_y) {
+    const double w = static_cast<double>(box.max_x - box.min_x) + 1, h = static_cast<double>(box.max_y - box.min_y) + 1;
+    cell_ = static_cast<geo::coord_t>(std::max({1e6, std::sqrt(w * h / 4e6), 1.0}));  // 1 mm; at most ~4M cells
+    nx_ = static_cast<long long>(w / static_cast<double>(cell_)) + 1;
+    ny_ = static_cast<long long>(h / static_cast<double>(cell_)) + 1;
+    touched_.assign(static_cast<size_t>(nx_ * ny_), 0);
+    for (const geo::Ring& r : region)
+      for (size_t i = 0; i < r.size(); ++i) {
+        const geo::Point &a = r[i], &b = r[(i + 1) % r.size()];
+        const long long c0 = cx(std::min(a.X, b.X)), c1 = cx(std::max(a.X, b.X));
+        const long long r0 = cy(std::min(a.Y, b.Y)), r1 = cy(std::max(a.Y, b.Y));
+        for (long long y = r0; y <= r1; ++y)
+          for (long long x = c0; x <= c1; ++x) touched_[static_cast<size_t>(y * nx_ + x)] = 1;
+      }
+  }
+  // Whether segment ab lies in the box and in untouched cells only.
+  bool clear(const geo::Point& a, const geo::Point& b) const {
+    const geo::coord_t lx = std::min(a.X, b.X), hx = std::max(a.X, b.X);
+    const geo::coord_t ly = std::min(a.Y, b.Y), hy = std::max(a.Y, b.Y);
+    if (lx < x0_ || ly < y0_) return false;
+    const long long c0 = (lx - x0_) / cell_, c1 = (hx - x0_) / cell_, r0 = (ly - y0_) / cell_, r1 = (hy - y0_) / cell_;
+    if (c1 >= nx_ || r1 >= ny_) return false;
+    for (long long y = r0; y <= r1; ++y)
+      for (long long x = c0; x <= c1; ++x)
+        if (touched_[static_cast<size_t>(y * nx_ + x)]) return false;
+    return true;
+  }
+
+ private:
+  long long cx(geo::coord_t x) const { return (x - x0_) / cell_; }
+  long long cy(geo::coord_t y) const { return (y - y0_) / cell_; }
+  geo::coord_t x0_, y0_, cell_ = 1;
+  long long nx_ = 0, ny_ = 0;
+  std::vector<uint8_t> touched_;
+};
+
 // Open polylines cut into the pieces inside `region` (its edge grid `grid`): each piece's ends
 // lie on the ring edges the polyline crosses there (or on none, for a polyline that starts or
 // ends inside). Between two crossings a piece is in or out by the middle of the stretch (exact
@@ -307,6 +351,7 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, 
               static_cast<double>(a.Y) + t * static_cast<double>(b.Y - a.Y)};
   };
   const geo::BBox2 box = bbox(region);
+  const ClearCells clear(region, box);
   auto outside_box = [&](const geo::Point& a, const geo::Point& b) {
     return std::max(a.X, b.X) < box.min_x || std::min(a.X, b.X) > box.max_x || std::max(a.Y, b.Y) < box.min_y ||
            std::min(a.Y, b.Y) > box.max_y;
@@ -341,6 +386,10 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, 
       const geo::Point &a = line[i], &b = line[i + 1];
       if (a == b) continue;
       if (!in && outside_box(a, b)) continue;  // no crossing out there
+      if (clear.clear(a, b)) {                  // nor there
+        if (in) add({static_cast<double>(b.X), static_cast<double>(b.Y)});
+        continue;
+      }
       const std::vector<EdgeGrid::Hit> hs = grid.hits(a, b);
       for (size_t h = 0; h < hs.size(); ++h) {
         const double t = hs[h].t, next = h + 1 < hs.size() ? hs[h + 1].t : 1.0;
