@@ -52,14 +52,40 @@ class Frame {
         const double u = x * c_ + y * s_, v = -x * s_ + y * c_;
         u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
       }
+    // The box's corners in order round it, in the frame.
+    const double xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
+    for (int i = 0; i < 4; ++i) corner_[i] = {xs[i] * c_ + ys[i] * s_, -xs[i] * s_ + ys[i] * c_};
   }
   geo::Point bed(double u, double v) const {
     return to_pt((u * c_ - v * s_) * geo::kUnitsPerMm, (u * s_ + v * c_) * geo::kUnitsPerMm);
+  }
+  // The extent [lo, hi] along u (along v when `across`) of the part of the box whose v (u) lies
+  // in [a, b], widened by a micrometre; false when that part is empty. Pattern lines run across
+  // the frame's box, which at 45° is twice the box: their pieces outside it are left out before
+  // they are drawn (they would be clipped away: the box holds the region with a margin).
+  bool extent_within(bool across, double a, double b, double& lo, double& hi) const {
+    lo = 1e300, hi = -1e300;
+    auto take = [&](double along, double at) {
+      if (at >= a && at <= b) lo = std::min(lo, along), hi = std::max(hi, along);
+    };
+    for (int i = 0; i < 4; ++i) {
+      const auto& p = corner_[i];
+      const auto& q = corner_[(i + 1) % 4];
+      const double pa = across ? p.second : p.first, pc = across ? p.first : p.second;
+      const double qa = across ? q.second : q.first, qc = across ? q.first : q.second;
+      take(pa, pc);
+      for (double c : {a, b})  // where the side crosses c
+        if ((pc - c) * (qc - c) < 0) take(pa + (qa - pa) * (c - pc) / (qc - pc), c);
+    }
+    if (lo > hi) return false;
+    lo -= 1e-3, hi += 1e-3;
+    return true;
   }
   double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;  // the box's extent in the frame (mm)
 
  private:
   double c_, s_;
+  std::pair<double, double> corner_[4];  // (u, v)
 };
 
 // Straight lines at `dir_deg` (from +x), `pitch` apart, through the points whose distance across
@@ -90,9 +116,15 @@ void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, d
   for (double j = j0; j <= j1; j += 1) {
     const double base = j * h;
     const double shift = static_cast<long long>(j) % 2 == 0 ? 0.0 : 1.5 * a;  // odd waves mirrored
+    // Only the periods that reach the box, and one more on each side.
+    double ulo, uhi;
+    if (!f.extent_within(false, base + lo, base + hi, ulo, uhi)) continue;
+    const double na = std::max(n0, std::floor((ulo - shift - 2.5 * a - e) / period) - 1);
+    const double nb = std::min(n1, std::ceil((uhi - shift + e) / period) + 1);
+    if (na > nb) continue;
     geo::Ring w;
-    w.reserve(static_cast<size_t>(4 * (n1 - n0 + 1)));
-    for (double n = n0; n <= n1; n += 1) {
+    w.reserve(static_cast<size_t>(4 * (nb - na + 1)));
+    for (double n = na; n <= nb; n += 1) {
       const double u = n * period + shift;
       w.push_back(f.bed(u - e, base + lo));
       w.push_back(f.bed(u + a + e, base + lo));
@@ -173,9 +205,20 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
     for (double k = std::floor((t0 - hi) / (2 * kPi)); k <= std::ceil((t1 - lo) / (2 * kPi)); k += 1) {
       const double dt = 2 * kPi * k;
       if (hi + dt < t0 || lo + dt > t1) continue;
+      // The points whose s reaches the box across this copy's range of t, and one more each side
+      // (pts run by increasing s).
+      double slo, shi;
+      if (!f.extent_within(swap, (lo + dt) / w, (hi + dt) / w, slo, shi)) continue;
+      auto first = std::lower_bound(pts.begin(), pts.end(), slo * w,
+                                    [](const std::pair<double, double>& q, double v) { return q.first < v; });
+      auto last = std::upper_bound(pts.begin(), pts.end(), shi * w,
+                                   [](double v, const std::pair<double, double>& q) { return v < q.first; });
+      if (first != pts.begin()) --first;
+      if (last != pts.end()) ++last;
+      if (last - first < 2) continue;
       geo::Ring ring;
-      ring.reserve(pts.size());
-      for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
+      ring.reserve(static_cast<size_t>(last - first));
+      for (auto it = first; it != last; ++it) add(ring, it->first, it->second + dt);
       out.push_back(std::move(ring));
     }
   }

@@ -269,6 +269,50 @@ TEST_CASE("infill patterns: line ends keep half a bead from runs of cut edges") 
   }
 }
 
+// The waves and gyroid curves are drawn only where they reach the box (at 45° the pattern's own
+// frame holds twice the box): every line must still run across the box's inside, 1 mm in from
+// its sides (the margin the fill leaves round a region), starting and ending with a segment
+// clear of it, and lay its share of line there, at any angle.
+TEST_CASE("infill patterns: lines cross the whole box at any angle") {
+  const double x0 = 0, y0 = 0, x1 = 30, y1 = 24, m = 1.0;
+  // Length of segment ab inside the inner box (Liang-Barsky), mm.
+  auto inside_len = [&](const geo::Point& a, const geo::Point& b) {
+    const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), dx = geo::to_mm(b.X) - ax, dy = geo::to_mm(b.Y) - ay;
+    double t0 = 0, t1 = 1;
+    const double p[4] = {-dx, dx, -dy, dy}, q[4] = {ax - (x0 + m), (x1 - m) - ax, ay - (y0 + m), (y1 - m) - ay};
+    for (int i = 0; i < 4; ++i) {
+      if (p[i] == 0) {
+        if (q[i] < 0) return 0.0;
+        continue;
+      }
+      const double r = q[i] / p[i];
+      if (p[i] < 0) t0 = std::max(t0, r);
+      else t1 = std::min(t1, r);
+    }
+    return t1 > t0 ? (t1 - t0) * std::hypot(dx, dy) : 0.0;
+  };
+  for (InfillPattern p : {InfillPattern::Honeycomb, InfillPattern::Gyroid})
+    for (double angle : {0.0, 20.0, 45.0, 70.0, 135.0})
+      for (double z : {0.3, 1.1, 2.9}) {
+        CAPTURE(name_of(p));
+        CAPTURE(angle);
+        CAPTURE(z);
+        PatternSpec spec = spec_of(p, 0.2, z);
+        spec.angle_deg = angle;
+        const geo::Rings lines = pattern_lines(spec, x0, y0, x1, y1);
+        double len = 0;
+        bool ends_clear = true;
+        for (const auto& l : lines) {
+          REQUIRE(l.size() >= 2);
+          if (inside_len(l[0], l[1]) > 0 || inside_len(l[l.size() - 2], l.back()) > 0) ends_clear = false;
+          for (size_t i = 1; i < l.size(); ++i) len += inside_len(l[i - 1], l[i]);
+        }
+        CHECK(ends_clear);
+        const double area = (x1 - x0 - 2 * m) * (y1 - y0 - 2 * m);
+        CHECK(len * kSpacing == doctest::Approx(plastic_fraction(p, 0.2) * area).epsilon(0.12));
+      }
+}
+
 TEST_CASE("infill patterns: concentric loops follow the border inward") {
   const geo::Rings sq{test::rect(0, 0, 20, 20)};
   auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
