@@ -137,6 +137,11 @@ double BorderLinker::walk(const End& from, const End& b, std::vector<UV>& pts, s
   const double limit = limit_;
   constexpr double kNo = 1e300, kSlack = 1e4;  // 10 µm
   if (from.ring != b.ring) return kNo;
+  // Ends certainly further apart than the limit or the bound are left at once, without hypot:
+  // the squared distance over the squared cap, with room for both roundings (most candidates
+  // of a pattern's many ends are).
+  const double du = b.p.u - from.p.u, dv = b.p.v - from.p.v, cap = std::min(limit, bound + kSlack);
+  if (du * du + dv * dv > cap * cap * (1 + 1e-9)) return kNo;
   const double chord = std::hypot(b.p.u - from.p.u, b.p.v - from.p.v);
   if (chord > limit || chord > bound + kSlack) return kNo;
   const uint32_t r = from.ring;
