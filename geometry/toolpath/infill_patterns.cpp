@@ -224,33 +224,50 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
   }
 }
 
-// The nearest ring edge to a point, over a hash grid of the rings' edges.
-class EdgeIndex {
+// Whether a ring edge lies near a point, over a grid of the rings' edges (1 mm cells, or coarser
+// over a large box; each edge listed in the cells its box grown by `reach` meets).
+class NearEdges {
  public:
-  EdgeIndex(const std::vector<Ring2>& rings, double reach) : rings_(rings), reach_(reach) {
-    for (uint32_t r = 0; r < rings.size(); ++r) {
-      const auto& p = rings[r].pts;
-      for (uint32_t i = 0; i < p.size(); ++i) {
-        const UV &a = p[i], &b = p[(i + 1) % p.size()];
-        const long long cx0 = cell(std::min(a.u, b.u) - reach), cx1 = cell(std::max(a.u, b.u) + reach);
-        const long long cy0 = cell(std::min(a.v, b.v) - reach), cy1 = cell(std::max(a.v, b.v) + reach);
-        for (long long x = cx0; x <= cx1; ++x)
-          for (long long y = cy0; y <= cy1; ++y) cells_[key(x, y)].push_back({r, i});
+  NearEdges(const std::vector<Ring2>& rings, double reach) : rings_(rings) {
+    double x1 = -1e300, y1 = -1e300;
+    for (const auto& r : rings)
+      for (const UV& q : r.pts) x0_ = std::min(x0_, q.u), y0_ = std::min(y0_, q.v), x1 = std::max(x1, q.u), y1 = std::max(y1, q.v);
+    if (x0_ > x1) return;
+    x0_ -= reach, y0_ -= reach, x1 += reach, y1 += reach;
+    cell_ = std::max(1e6, std::sqrt((x1 - x0_) * (y1 - y0_) / 4e6));
+    nx_ = static_cast<long long>((x1 - x0_) / cell_) + 1;
+    ny_ = static_cast<long long>((y1 - y0_) / cell_) + 1;
+    start_.assign(static_cast<size_t>(nx_ * ny_ + 1), 0);
+    auto each = [&](auto&& f) {
+      for (uint32_t r = 0; r < rings.size(); ++r) {
+        const auto& p = rings[r].pts;
+        for (uint32_t i = 0; i < p.size(); ++i) {
+          const UV &a = p[i], &b = p[(i + 1) % p.size()];
+          const long long cx0 = cx(std::min(a.u, b.u) - reach), cx1 = cx(std::max(a.u, b.u) + reach);
+          const long long cy0 = cy(std::min(a.v, b.v) - reach), cy1 = cy(std::max(a.v, b.v) + reach);
+          for (long long y = cy0; y <= cy1; ++y)
+            for (long long x = cx0; x <= cx1; ++x) f(static_cast<size_t>(y * nx_ + x), r, i);
+        }
       }
-    }
+    };
+    each([&](size_t c, uint32_t, uint32_t) { ++start_[c + 1]; });
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(start_.back());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    each([&](size_t c, uint32_t r, uint32_t i) { items_[fill[c]++] = {r, i}; });
   }
-  // The edge within `reach` nearest to p; false when none.
-  bool nearest(UV p, uint32_t& ring, uint32_t& edge, double& dist) const {
-    auto it = cells_.find(key(cell(p.u), cell(p.v)));
-    if (it == cells_.end()) return false;
-    dist = reach_;
-    bool found = false;
-    for (const auto& [r, i] : it->second) {
-      const auto& pts = rings_[r].pts;
-      const double d = distance(p, pts[i], pts[(i + 1) % pts.size()]);
-      if (d <= dist) dist = d, ring = r, edge = i, found = true;
+  // Whether an edge lies within `d` of p (d at most the reach).
+  bool within(UV p, double d) const {
+    if (start_.empty() || p.u < x0_ || p.v < y0_) return false;
+    const long long x = static_cast<long long>((p.u - x0_) / cell_), y = static_cast<long long>((p.v - y0_) / cell_);
+    if (x >= nx_ || y >= ny_) return false;
+    const size_t c = static_cast<size_t>(y * nx_ + x);
+    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+      const auto& pts = rings_[items_[k].first].pts;
+      const uint32_t i = items_[k].second;
+      if (distance(p, pts[i], pts[(i + 1) % pts.size()]) <= d) return true;
     }
-    return found;
+    return false;
   }
   static double distance(UV p, UV a, UV b) {
     const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
@@ -259,14 +276,13 @@ class EdgeIndex {
   }
 
  private:
-  static constexpr double kCell = 1e6;  // 1 mm
-  static long long cell(double x) { return static_cast<long long>(std::floor(x / kCell)); }
-  static uint64_t key(long long x, long long y) {
-    return (static_cast<uint64_t>(x) << 32) ^ (static_cast<uint64_t>(y) & 0xffffffffu);
-  }
+  long long cx(double u) const { return std::clamp(static_cast<long long>((u - x0_) / cell_), 0LL, nx_ - 1); }
+  long long cy(double v) const { return std::clamp(static_cast<long long>((v - y0_) / cell_), 0LL, ny_ - 1); }
   const std::vector<Ring2>& rings_;
-  double reach_;
-  std::unordered_map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells_;
+  double x0_ = 1e300, y0_ = 1e300, cell_ = 1e6;
+  long long nx_ = 0, ny_ = 0;
+  std::vector<uint32_t> start_;  // CSR: the edges of cell c are items_[start_[c] .. start_[c + 1])
+  std::vector<std::pair<uint32_t, uint32_t>> items_;
 };
 
 std::vector<Ring2> to_ring2(const geo::Rings& rings) {
@@ -328,14 +344,11 @@ std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& 
   rings = difference(rings, band);
   std::vector<Ring2> out = to_ring2(rings);
   const std::vector<Ring2> cut2 = to_ring2(cuts);
-  EdgeIndex near_cut(cut2, inset + 2e4);
+  const NearEdges near_cut(cut2, inset + 2e4);
   for (auto& q : out)
     for (size_t i = 0; i < q.pts.size(); ++i) {
       const UV &a = q.pts[i], &b = q.pts[(i + 1) % q.pts.size()];
-      uint32_t rr, ee;
-      double d;
-      if (near_cut.nearest({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, rr, ee, d) && d <= inset + 1e4)
-        q.kinds[i] = geo::EdgeKind::Artificial;
+      if (near_cut.within({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, inset + 1e4)) q.kinds[i] = geo::EdgeKind::Artificial;
     }
   return out;
 }
