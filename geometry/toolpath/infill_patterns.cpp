@@ -361,17 +361,25 @@ class ClearCells {
  public:
   ClearCells(const geo::Rings& region, const geo::BBox2& box) : x0_(box.min_x), y0_(box.min_y) {
     const double w = static_cast<double>(box.max_x - box.min_x) + 1, h = static_cast<double>(box.max_y - box.min_y) + 1;
-    cell_ = static_cast<geo::coord_t>(std::max({1e6, std::sqrt(w * h / 4e6), 1.0}));  // 1 mm; at most ~4M cells
+    cell_ = static_cast<geo::coord_t>(std::max({kCell, std::sqrt(w * h / 4e6), 1.0}));  // at most ~4M cells
     nx_ = static_cast<long long>(w / static_cast<double>(cell_)) + 1;
     ny_ = static_cast<long long>(h / static_cast<double>(cell_)) + 1;
     touched_.assign(static_cast<size_t>(nx_ * ny_), 0);
+    // Each edge in pieces a cell long at most, each piece's box (2 units wider, against the
+    // rounding of its ends) marked: the cells along the edge and few more, where the edge's own
+    // box would mark a square across a diagonal edge.
+    const double c = static_cast<double>(cell_);
     for (const geo::Ring& r : region)
       for (size_t i = 0; i < r.size(); ++i) {
         const geo::Point &a = r[i], &b = r[(i + 1) % r.size()];
-        const long long c0 = cx(std::min(a.X, b.X)), c1 = cx(std::max(a.X, b.X));
-        const long long r0 = cy(std::min(a.Y, b.Y)), r1 = cy(std::max(a.Y, b.Y));
-        for (long long y = r0; y <= r1; ++y)
-          for (long long x = c0; x <= c1; ++x) touched_[static_cast<size_t>(y * nx_ + x)] = 1;
+        const double ax = static_cast<double>(a.X), ay = static_cast<double>(a.Y);
+        const double dx = static_cast<double>(b.X - a.X), dy = static_cast<double>(b.Y - a.Y);
+        const int pieces = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(dx), std::abs(dy)) / c)));
+        for (int k = 0; k < pieces; ++k) {
+          const double t0 = static_cast<double>(k) / pieces, t1 = static_cast<double>(k + 1) / pieces;
+          const double xa = ax + dx * t0, xb = ax + dx * t1, ya = ay + dy * t0, yb = ay + dy * t1;
+          mark(std::min(xa, xb) - 2, std::min(ya, yb) - 2, std::max(xa, xb) + 2, std::max(ya, yb) + 2);
+        }
       }
   }
   // Whether segment ab lies in the box and in untouched cells only.
@@ -388,8 +396,16 @@ class ClearCells {
   }
 
  private:
-  long long cx(geo::coord_t x) const { return (x - x0_) / cell_; }
-  long long cy(geo::coord_t y) const { return (y - y0_) / cell_; }
+  static constexpr double kCell = 1e6;  // 1 mm
+  void mark(double lx, double ly, double hx, double hy) {
+    const double c = static_cast<double>(cell_), x0 = static_cast<double>(x0_), y0 = static_cast<double>(y0_);
+    const long long c0 = std::clamp(static_cast<long long>(std::floor((lx - x0) / c)), 0LL, nx_ - 1);
+    const long long c1 = std::clamp(static_cast<long long>(std::floor((hx - x0) / c)), 0LL, nx_ - 1);
+    const long long r0 = std::clamp(static_cast<long long>(std::floor((ly - y0) / c)), 0LL, ny_ - 1);
+    const long long r1 = std::clamp(static_cast<long long>(std::floor((hy - y0) / c)), 0LL, ny_ - 1);
+    for (long long y = r0; y <= r1; ++y)
+      for (long long x = c0; x <= c1; ++x) touched_[static_cast<size_t>(y * nx_ + x)] = 1;
+  }
   geo::coord_t x0_, y0_, cell_ = 1;
   long long nx_ = 0, ny_ = 0;
   std::vector<uint8_t> touched_;

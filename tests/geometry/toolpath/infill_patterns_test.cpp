@@ -135,6 +135,44 @@ TEST_CASE("infill patterns: gyroid's free ends anchored along the border") {
   CHECK(all_inside(anchored, ring, 0.001));
 }
 
+// Slanted borders, long edges and a slanted hole: every segment of every path, sampled along
+// its length, stays inside (the clipping answers the segments away from the border from a grid
+// of cells no edge passes through; a cell a slanted edge crosses but its grid missed would let a
+// segment run out through it).
+TEST_CASE("infill patterns: segments stay inside a slanted region") {
+  const geo::Rings region{
+      {geo::to_point(20, 0), geo::to_point(43, 21), geo::to_point(21, 44), geo::to_point(0, 19)},
+      {geo::to_point(17, 15), geo::to_point(19.5, 29), geo::to_point(31, 25)},  // clockwise
+  };
+  REQUIRE(ClipperLib::Orientation(region[0]));
+  REQUIRE(!ClipperLib::Orientation(region[1]));
+  const geo::Rings grown = offset(region, 0.001);
+  auto inside = [&](const geo::Point& q) {
+    int w = 0;
+    for (const auto& r : grown)
+      if (ClipperLib::PointInPolygon(q, r) != 0) w += ClipperLib::Orientation(r) ? 1 : -1;
+    return w > 0;
+  };
+  for (InfillPattern p : kLinePatterns)
+    for (double density : {0.2, 0.45}) {
+      CAPTURE(name_of(p));
+      CAPTURE(density);
+      auto fps = pattern_fill(fill_shape(region, geo::EdgeKind::Real), spec_of(p, density));
+      REQUIRE(!fps.empty());
+      int outside = 0;
+      for (const auto& fp : fps)
+        for (size_t i = 1; i < fp.pts.size(); ++i)
+          for (double t : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+            const geo::Point& a = fp.pts[i - 1];
+            const geo::Point& b = fp.pts[i];
+            const geo::Point q(a.X + static_cast<geo::coord_t>(t * static_cast<double>(b.X - a.X)),
+                               a.Y + static_cast<geo::coord_t>(t * static_cast<double>(b.Y - a.Y)));
+            if (!inside(q)) ++outside;
+          }
+      CHECK(outside == 0);
+    }
+}
+
 TEST_CASE("infill patterns: every line stays inside the region, also round a hole") {
   const geo::Rings ring{test::rect(0, 0, 20, 20), test::rect(6, 6, 12, 11, false)};
   for (InfillPattern p : kLinePatterns) {
