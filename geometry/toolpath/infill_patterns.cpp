@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 
@@ -52,14 +53,40 @@ class Frame {
         const double u = x * c_ + y * s_, v = -x * s_ + y * c_;
         u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
       }
+    // The box's corners in order round it, in the frame.
+    const double xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
+    for (int i = 0; i < 4; ++i) corner_[i] = {xs[i] * c_ + ys[i] * s_, -xs[i] * s_ + ys[i] * c_};
   }
   geo::Point bed(double u, double v) const {
     return to_pt((u * c_ - v * s_) * geo::kUnitsPerMm, (u * s_ + v * c_) * geo::kUnitsPerMm);
+  }
+  // The extent [lo, hi] along u (along v when `across`) of the part of the box whose v (u) lies
+  // in [a, b], widened by a micrometre; false when that part is empty. Pattern lines run across
+  // the frame's box, which at 45° is twice the box: their pieces outside it are left out before
+  // they are drawn (they would be clipped away: the box holds the region with a margin).
+  bool extent_within(bool across, double a, double b, double& lo, double& hi) const {
+    lo = 1e300, hi = -1e300;
+    auto take = [&](double along, double at) {
+      if (at >= a && at <= b) lo = std::min(lo, along), hi = std::max(hi, along);
+    };
+    for (int i = 0; i < 4; ++i) {
+      const auto& p = corner_[i];
+      const auto& q = corner_[(i + 1) % 4];
+      const double pa = across ? p.second : p.first, pc = across ? p.first : p.second;
+      const double qa = across ? q.second : q.first, qc = across ? q.first : q.second;
+      take(pa, pc);
+      for (double c : {a, b})  // where the side crosses c
+        if ((pc - c) * (qc - c) < 0) take(pa + (qa - pa) * (c - pc) / (qc - pc), c);
+    }
+    if (lo > hi) return false;
+    lo -= 1e-3, hi += 1e-3;
+    return true;
   }
   double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;  // the box's extent in the frame (mm)
 
  private:
   double c_, s_;
+  std::pair<double, double> corner_[4];  // (u, v)
 };
 
 // Straight lines at `dir_deg` (from +x), `pitch` apart, through the points whose distance across
@@ -90,8 +117,15 @@ void honeycomb(geo::Rings& out, double angle, double a, double gap, double x0, d
   for (double j = j0; j <= j1; j += 1) {
     const double base = j * h;
     const double shift = static_cast<long long>(j) % 2 == 0 ? 0.0 : 1.5 * a;  // odd waves mirrored
+    // Only the periods that reach the box, and one more on each side.
+    double ulo, uhi;
+    if (!f.extent_within(false, base + lo, base + hi, ulo, uhi)) continue;
+    const double na = std::max(n0, std::floor((ulo - shift - 2.5 * a - e) / period) - 1);
+    const double nb = std::min(n1, std::ceil((uhi - shift + e) / period) + 1);
+    if (na > nb) continue;
     geo::Ring w;
-    for (double n = n0; n <= n1; n += 1) {
+    w.reserve(static_cast<size_t>(4 * (nb - na + 1)));
+    for (double n = na; n <= nb; n += 1) {
       const double u = n * period + shift;
       w.push_back(f.bed(u - e, base + lo));
       w.push_back(f.bed(u + a + e, base + lo));
@@ -112,8 +146,8 @@ struct GyroidBranch {
   double gz;
   bool swap;
   int fam;
+  double cz = std::cos(gz), sz = std::sin(gz);
   double operator()(double s) const {
-    const double cz = std::cos(gz), sz = std::sin(gz);
     double A, B, C;  // A sin t + B cos t = C
     if (!swap) {     // sin s cos t + cos gz sin t = −sin gz cos s
       A = cz, B = std::sin(s), C = -sz * std::cos(s);
@@ -172,40 +206,69 @@ void gyroid(geo::Rings& out, double angle, double period, double z, double x0, d
     for (double k = std::floor((t0 - hi) / (2 * kPi)); k <= std::ceil((t1 - lo) / (2 * kPi)); k += 1) {
       const double dt = 2 * kPi * k;
       if (hi + dt < t0 || lo + dt > t1) continue;
+      // The points whose s reaches the box across this copy's range of t, and one more each side
+      // (pts run by increasing s).
+      double slo, shi;
+      if (!f.extent_within(swap, (lo + dt) / w, (hi + dt) / w, slo, shi)) continue;
+      auto first = std::lower_bound(pts.begin(), pts.end(), slo * w,
+                                    [](const std::pair<double, double>& q, double v) { return q.first < v; });
+      auto last = std::upper_bound(pts.begin(), pts.end(), shi * w,
+                                   [](double v, const std::pair<double, double>& q) { return v < q.first; });
+      if (first != pts.begin()) --first;
+      if (last != pts.end()) ++last;
+      if (last - first < 2) continue;
       geo::Ring ring;
-      for (const auto& [ps, pt] : pts) add(ring, ps, pt + dt);
+      ring.reserve(static_cast<size_t>(last - first));
+      for (auto it = first; it != last; ++it) add(ring, it->first, it->second + dt);
       out.push_back(std::move(ring));
     }
   }
 }
 
-// The nearest ring edge to a point, over a hash grid of the rings' edges.
-class EdgeIndex {
+// Whether a ring edge lies near a point, over a grid of the rings' edges (1 mm cells, or coarser
+// over a large box; each edge listed in the cells its box grown by `reach` meets).
+class NearEdges {
  public:
-  EdgeIndex(const std::vector<Ring2>& rings, double reach) : rings_(rings), reach_(reach) {
-    for (uint32_t r = 0; r < rings.size(); ++r) {
-      const auto& p = rings[r].pts;
-      for (uint32_t i = 0; i < p.size(); ++i) {
-        const UV &a = p[i], &b = p[(i + 1) % p.size()];
-        const long long cx0 = cell(std::min(a.u, b.u) - reach), cx1 = cell(std::max(a.u, b.u) + reach);
-        const long long cy0 = cell(std::min(a.v, b.v) - reach), cy1 = cell(std::max(a.v, b.v) + reach);
-        for (long long x = cx0; x <= cx1; ++x)
-          for (long long y = cy0; y <= cy1; ++y) cells_[key(x, y)].push_back({r, i});
+  NearEdges(const std::vector<Ring2>& rings, double reach) : rings_(rings) {
+    double x1 = -1e300, y1 = -1e300;
+    for (const auto& r : rings)
+      for (const UV& q : r.pts) x0_ = std::min(x0_, q.u), y0_ = std::min(y0_, q.v), x1 = std::max(x1, q.u), y1 = std::max(y1, q.v);
+    if (x0_ > x1) return;
+    x0_ -= reach, y0_ -= reach, x1 += reach, y1 += reach;
+    cell_ = std::max(1e6, std::sqrt((x1 - x0_) * (y1 - y0_) / 4e6));
+    nx_ = static_cast<long long>((x1 - x0_) / cell_) + 1;
+    ny_ = static_cast<long long>((y1 - y0_) / cell_) + 1;
+    start_.assign(static_cast<size_t>(nx_ * ny_ + 1), 0);
+    auto each = [&](auto&& f) {
+      for (uint32_t r = 0; r < rings.size(); ++r) {
+        const auto& p = rings[r].pts;
+        for (uint32_t i = 0; i < p.size(); ++i) {
+          const UV &a = p[i], &b = p[(i + 1) % p.size()];
+          const long long cx0 = cx(std::min(a.u, b.u) - reach), cx1 = cx(std::max(a.u, b.u) + reach);
+          const long long cy0 = cy(std::min(a.v, b.v) - reach), cy1 = cy(std::max(a.v, b.v) + reach);
+          for (long long y = cy0; y <= cy1; ++y)
+            for (long long x = cx0; x <= cx1; ++x) f(static_cast<size_t>(y * nx_ + x), r, i);
+        }
       }
-    }
+    };
+    each([&](size_t c, uint32_t, uint32_t) { ++start_[c + 1]; });
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(start_.back());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    each([&](size_t c, uint32_t r, uint32_t i) { items_[fill[c]++] = {r, i}; });
   }
-  // The edge within `reach` nearest to p; false when none.
-  bool nearest(UV p, uint32_t& ring, uint32_t& edge, double& dist) const {
-    auto it = cells_.find(key(cell(p.u), cell(p.v)));
-    if (it == cells_.end()) return false;
-    dist = reach_;
-    bool found = false;
-    for (const auto& [r, i] : it->second) {
-      const auto& pts = rings_[r].pts;
-      const double d = distance(p, pts[i], pts[(i + 1) % pts.size()]);
-      if (d <= dist) dist = d, ring = r, edge = i, found = true;
+  // Whether an edge lies within `d` of p (d at most the reach).
+  bool within(UV p, double d) const {
+    if (start_.empty() || p.u < x0_ || p.v < y0_) return false;
+    const long long x = static_cast<long long>((p.u - x0_) / cell_), y = static_cast<long long>((p.v - y0_) / cell_);
+    if (x >= nx_ || y >= ny_) return false;
+    const size_t c = static_cast<size_t>(y * nx_ + x);
+    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+      const auto& pts = rings_[items_[k].first].pts;
+      const uint32_t i = items_[k].second;
+      if (distance(p, pts[i], pts[(i + 1) % pts.size()]) <= d) return true;
     }
-    return found;
+    return false;
   }
   static double distance(UV p, UV a, UV b) {
     const double du = b.u - a.u, dv = b.v - a.v, l2 = du * du + dv * dv;
@@ -214,14 +277,13 @@ class EdgeIndex {
   }
 
  private:
-  static constexpr double kCell = 1e6;  // 1 mm
-  static long long cell(double x) { return static_cast<long long>(std::floor(x / kCell)); }
-  static uint64_t key(long long x, long long y) {
-    return (static_cast<uint64_t>(x) << 32) ^ (static_cast<uint64_t>(y) & 0xffffffffu);
-  }
+  long long cx(double u) const { return std::clamp(static_cast<long long>((u - x0_) / cell_), 0LL, nx_ - 1); }
+  long long cy(double v) const { return std::clamp(static_cast<long long>((v - y0_) / cell_), 0LL, ny_ - 1); }
   const std::vector<Ring2>& rings_;
-  double reach_;
-  std::unordered_map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> cells_;
+  double x0_ = 1e300, y0_ = 1e300, cell_ = 1e6;
+  long long nx_ = 0, ny_ = 0;
+  std::vector<uint32_t> start_;  // CSR: the edges of cell c are items_[start_[c] .. start_[c + 1])
+  std::vector<std::pair<uint32_t, uint32_t>> items_;
 };
 
 std::vector<Ring2> to_ring2(const geo::Rings& rings) {
@@ -239,34 +301,116 @@ std::vector<Ring2> to_ring2(const geo::Rings& rings) {
 // less a band `inset` wide along its artificial edges; each of its edges is artificial when it
 // runs along such a band.
 std::vector<Ring2> clip_rings(const FillShape& shape, double inset, geo::Rings& rings) {
-  geo::Rings cuts;  // runs of artificial edges as open polylines
+  // Runs of artificial edges as open polylines (a ring artificial all round: a closed line), so
+  // that the band is one offset per run: offset edge by edge, the round ends of every two
+  // neighbours overlapped, and the union that cleaned them was most of the clipping's cost.
+  geo::Rings cuts, closed_cuts;
   for (size_t r = 0; r < shape.rings.size(); ++r) {
     const auto& ring = shape.rings[r];
     const size_t n = ring.size();
     if (r >= shape.kinds.size() || n < 3) continue;
-    for (size_t i = 0; i < n; ++i)
-      if (shape.kinds[r][i] == geo::EdgeKind::Artificial) cuts.push_back({ring[i], ring[(i + 1) % n]});
+    const auto& kinds = shape.kinds[r];
+    auto artificial = [&](size_t i) { return kinds[i % n] == geo::EdgeKind::Artificial; };
+    size_t start = n;  // a real edge: runs start after it
+    for (size_t i = 0; i < n && start == n; ++i)
+      if (!artificial(i)) start = i;
+    if (start == n) {
+      closed_cuts.push_back(ring);
+      continue;
+    }
+    geo::Ring run;
+    for (size_t k = 1; k <= n; ++k) {
+      const size_t i = (start + k) % n;
+      if (artificial(i)) {
+        if (run.empty()) run.push_back(ring[i]);
+        run.push_back(ring[(i + 1) % n]);
+      } else if (!run.empty()) {
+        cuts.push_back(std::move(run));
+        run.clear();
+      }
+    }
+    if (!run.empty()) cuts.push_back(std::move(run));
   }
   rings = shape.rings;  // disjoint rings (region_shape's): the clipping reads them even-odd
-  if (cuts.empty() || inset <= 0) return to_ring2(rings);
+  if ((cuts.empty() && closed_cuts.empty()) || inset <= 0) return to_ring2(rings);
   geo::Rings band;
   ClipperLib::ClipperOffset co(2.0, 5000);
   co.AddPaths(cuts, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  co.AddPaths(closed_cuts, ClipperLib::jtRound, ClipperLib::etClosedLine);
   co.Execute(band, inset);
+  // The runs as rings for the edge index (which closes every ring): an open run there and back.
+  for (auto& c : cuts)
+    for (size_t i = c.size() - 1; i-- > 1;) c.push_back(c[i]);
+  cuts.insert(cuts.end(), closed_cuts.begin(), closed_cuts.end());
   rings = difference(rings, band);
   std::vector<Ring2> out = to_ring2(rings);
   const std::vector<Ring2> cut2 = to_ring2(cuts);
-  EdgeIndex near_cut(cut2, inset + 2e4);
+  const NearEdges near_cut(cut2, inset + 2e4);
   for (auto& q : out)
     for (size_t i = 0; i < q.pts.size(); ++i) {
       const UV &a = q.pts[i], &b = q.pts[(i + 1) % q.pts.size()];
-      uint32_t rr, ee;
-      double d;
-      if (near_cut.nearest({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, rr, ee, d) && d <= inset + 1e4)
-        q.kinds[i] = geo::EdgeKind::Artificial;
+      if (near_cut.within({0.5 * (a.u + b.u), 0.5 * (a.v + b.v)}, inset + 1e4)) q.kinds[i] = geo::EdgeKind::Artificial;
     }
   return out;
 }
+
+// The cells of a fine grid over a region's bounding box that no edge's bounding box meets: a
+// segment whose bounding box lies in such cells only crosses no edge. A pattern's segments are
+// short (a gyroid's half a millimetre, a honeycomb's side): most lie away from the border, and
+// this answers them without the edge grid's walk (whose cells are sized for the edges).
+class ClearCells {
+ public:
+  ClearCells(const geo::Rings& region, const geo::BBox2& box) : x0_(box.min_x), y0_(box.min_y) {
+    const double w = static_cast<double>(box.max_x - box.min_x) + 1, h = static_cast<double>(box.max_y - box.min_y) + 1;
+    cell_ = static_cast<geo::coord_t>(std::max({kCell, std::sqrt(w * h / 4e6), 1.0}));  // at most ~4M cells
+    nx_ = static_cast<long long>(w / static_cast<double>(cell_)) + 1;
+    ny_ = static_cast<long long>(h / static_cast<double>(cell_)) + 1;
+    touched_.assign(static_cast<size_t>(nx_ * ny_), 0);
+    // Each edge in pieces a cell long at most, each piece's box (2 units wider, against the
+    // rounding of its ends) marked: the cells along the edge and few more, where the edge's own
+    // box would mark a square across a diagonal edge.
+    const double c = static_cast<double>(cell_);
+    for (const geo::Ring& r : region)
+      for (size_t i = 0; i < r.size(); ++i) {
+        const geo::Point &a = r[i], &b = r[(i + 1) % r.size()];
+        const double ax = static_cast<double>(a.X), ay = static_cast<double>(a.Y);
+        const double dx = static_cast<double>(b.X - a.X), dy = static_cast<double>(b.Y - a.Y);
+        const int pieces = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(dx), std::abs(dy)) / c)));
+        for (int k = 0; k < pieces; ++k) {
+          const double t0 = static_cast<double>(k) / pieces, t1 = static_cast<double>(k + 1) / pieces;
+          const double xa = ax + dx * t0, xb = ax + dx * t1, ya = ay + dy * t0, yb = ay + dy * t1;
+          mark(std::min(xa, xb) - 2, std::min(ya, yb) - 2, std::max(xa, xb) + 2, std::max(ya, yb) + 2);
+        }
+      }
+  }
+  // Whether segment ab lies in the box and in untouched cells only.
+  bool clear(const geo::Point& a, const geo::Point& b) const {
+    const geo::coord_t lx = std::min(a.X, b.X), hx = std::max(a.X, b.X);
+    const geo::coord_t ly = std::min(a.Y, b.Y), hy = std::max(a.Y, b.Y);
+    if (lx < x0_ || ly < y0_) return false;
+    const long long c0 = (lx - x0_) / cell_, c1 = (hx - x0_) / cell_, r0 = (ly - y0_) / cell_, r1 = (hy - y0_) / cell_;
+    if (c1 >= nx_ || r1 >= ny_) return false;
+    for (long long y = r0; y <= r1; ++y)
+      for (long long x = c0; x <= c1; ++x)
+        if (touched_[static_cast<size_t>(y * nx_ + x)]) return false;
+    return true;
+  }
+
+ private:
+  static constexpr double kCell = 1e6;  // 1 mm
+  void mark(double lx, double ly, double hx, double hy) {
+    const double c = static_cast<double>(cell_), x0 = static_cast<double>(x0_), y0 = static_cast<double>(y0_);
+    const long long c0 = std::clamp(static_cast<long long>(std::floor((lx - x0) / c)), 0LL, nx_ - 1);
+    const long long c1 = std::clamp(static_cast<long long>(std::floor((hx - x0) / c)), 0LL, nx_ - 1);
+    const long long r0 = std::clamp(static_cast<long long>(std::floor((ly - y0) / c)), 0LL, ny_ - 1);
+    const long long r1 = std::clamp(static_cast<long long>(std::floor((hy - y0) / c)), 0LL, ny_ - 1);
+    for (long long y = r0; y <= r1; ++y)
+      for (long long x = c0; x <= c1; ++x) touched_[static_cast<size_t>(y * nx_ + x)] = 1;
+  }
+  geo::coord_t x0_, y0_, cell_ = 1;
+  long long nx_ = 0, ny_ = 0;
+  std::vector<uint8_t> touched_;
+};
 
 // Open polylines cut into the pieces inside `region` (its edge grid `grid`): each piece's ends
 // lie on the ring edges the polyline crosses there (or on none, for a polyline that starts or
@@ -280,6 +424,7 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, 
               static_cast<double>(a.Y) + t * static_cast<double>(b.Y - a.Y)};
   };
   const geo::BBox2 box = bbox(region);
+  const ClearCells clear(region, box);
   auto outside_box = [&](const geo::Point& a, const geo::Point& b) {
     return std::max(a.X, b.X) < box.min_x || std::min(a.X, b.X) > box.max_x || std::max(a.Y, b.Y) < box.min_y ||
            std::min(a.Y, b.Y) > box.max_y;
@@ -314,6 +459,10 @@ std::vector<Poly> clip_lines(const geo::Rings& lines, const geo::Rings& region, 
       const geo::Point &a = line[i], &b = line[i + 1];
       if (a == b) continue;
       if (!in && outside_box(a, b)) continue;  // no crossing out there
+      if (clear.clear(a, b)) {                  // nor there
+        if (in) add({static_cast<double>(b.X), static_cast<double>(b.Y)});
+        continue;
+      }
       const std::vector<EdgeGrid::Hit> hs = grid.hits(a, b);
       for (size_t h = 0; h < hs.size(); ++h) {
         const double t = hs[h].t, next = h + 1 < hs.size() ? hs[h + 1].t : 1.0;
@@ -378,6 +527,44 @@ geo::Ring start_nearest(const geo::Ring& r, const geo::Point& p) {
   return out;
 }
 
+// Whether `ring` lies between two parallel lines less than `width` units apart, across x, y or
+// a diagonal: a disc of diameter `width` cannot fit in it then. (Sums and differences only: it
+// runs on every ring before every shrink.)
+bool thinner_than(const geo::Ring& ring, double width) {
+  if (ring.empty()) return true;
+  geo::coord_t lo[4], hi[4];
+  for (int k = 0; k < 4; ++k) lo[k] = std::numeric_limits<geo::coord_t>::max(), hi[k] = std::numeric_limits<geo::coord_t>::min();
+  for (const geo::Point& p : ring) {
+    const geo::coord_t v[4] = {p.X, p.Y, p.X + p.Y, p.Y - p.X};
+    for (int k = 0; k < 4; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+  }
+  const double diag = width * std::sqrt(2.0);  // the diagonal sums measure √2 × the width
+  return static_cast<double>(hi[0] - lo[0]) < width || static_cast<double>(hi[1] - lo[1]) < width ||
+         static_cast<double>(hi[2] - lo[2]) < diag || static_cast<double>(hi[3] - lo[3]) < diag;
+}
+
+// `region` (counter-clockwise outers, clockwise holes) less the parts that shrinking by `d`
+// units leaves empty for certain: each outer ring too thin for a disc of radius d
+// (thinner_than) and every ring inside it (its holes and whatever they hold, thinner still).
+// Shrinking a region past its inscribed radius is the costliest offset there is: every moved
+// edge crosses every other, and the union that cleans them is quadratic (a sphere's innermost
+// loops: 4 ms for a 36-point circle, more than all its other loops).
+geo::Rings shrinkable(const geo::Rings& region, double d) {
+  std::vector<const geo::Ring*> thin;
+  for (const geo::Ring& r : region)
+    if (ClipperLib::Area(r) > 0 && thinner_than(r, 2 * d)) thin.push_back(&r);
+  if (thin.empty()) return region;
+  geo::Rings out;
+  for (const geo::Ring& r : region) {
+    if (r.empty()) continue;
+    bool inside_thin = false;
+    for (const geo::Ring* t : thin)
+      if (t == &r || ClipperLib::PointInPolygon(r[0], *t) != 0) inside_thin = true;
+    if (!inside_thin) out.push_back(r);
+  }
+  return out;
+}
+
 // Concentric loops, outermost first, each joined to the next when the crossing is short and
 // stays inside the region.
 std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, double pitch_mm) {
@@ -400,12 +587,13 @@ std::vector<FillPath> concentric(const FillShape& shape, double spacing_mm, doub
   // moves, and the linking and the writer their cost.
   const double first = 0.5 * spacing_mm, half = 0.5 * spacing_mm;
   constexpr geo::coord_t kTol = 10000;
-  geo::Rings eroded = offset_coarse(simplify(region, kTol), -(first + half)), next;
+  const double d0 = first + half;
+  geo::Rings eroded = offset_coarse(shrinkable(simplify(region, kTol), d0 * geo::kUnitsPerMm), -d0), next;
   for (int k = 0; k < 100000 && !eroded.empty(); ++k, eroded = std::move(next)) {
     // The loop (grown by half a bead) and the next shrunk region, from the same simplified copy.
     const geo::Rings src = simplify(eroded, kTol);
     geo::Rings loops = simplify(offset_coarse(src, half), kTol);
-    next = offset_coarse(src, -pitch_mm);
+    next = offset_coarse(shrinkable(src, pitch_mm * geo::kUnitsPerMm), -pitch_mm);
     if (loops.empty()) break;
     std::stable_sort(loops.begin(), loops.end(),
                      [](const geo::Ring& a, const geo::Ring& b) { return ClipperLib::Area(a) > ClipperLib::Area(b); });

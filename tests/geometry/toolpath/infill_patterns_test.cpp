@@ -135,6 +135,44 @@ TEST_CASE("infill patterns: gyroid's free ends anchored along the border") {
   CHECK(all_inside(anchored, ring, 0.001));
 }
 
+// Slanted borders, long edges and a slanted hole: every segment of every path, sampled along
+// its length, stays inside (the clipping answers the segments away from the border from a grid
+// of cells no edge passes through; a cell a slanted edge crosses but its grid missed would let a
+// segment run out through it).
+TEST_CASE("infill patterns: segments stay inside a slanted region") {
+  const geo::Rings region{
+      {geo::to_point(20, 0), geo::to_point(43, 21), geo::to_point(21, 44), geo::to_point(0, 19)},
+      {geo::to_point(17, 15), geo::to_point(19.5, 29), geo::to_point(31, 25)},  // clockwise
+  };
+  REQUIRE(ClipperLib::Orientation(region[0]));
+  REQUIRE(!ClipperLib::Orientation(region[1]));
+  const geo::Rings grown = offset(region, 0.001);
+  auto inside = [&](const geo::Point& q) {
+    int w = 0;
+    for (const auto& r : grown)
+      if (ClipperLib::PointInPolygon(q, r) != 0) w += ClipperLib::Orientation(r) ? 1 : -1;
+    return w > 0;
+  };
+  for (InfillPattern p : kLinePatterns)
+    for (double density : {0.2, 0.45}) {
+      CAPTURE(name_of(p));
+      CAPTURE(density);
+      auto fps = pattern_fill(fill_shape(region, geo::EdgeKind::Real), spec_of(p, density));
+      REQUIRE(!fps.empty());
+      int outside = 0;
+      for (const auto& fp : fps)
+        for (size_t i = 1; i < fp.pts.size(); ++i)
+          for (double t : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+            const geo::Point& a = fp.pts[i - 1];
+            const geo::Point& b = fp.pts[i];
+            const geo::Point q(a.X + static_cast<geo::coord_t>(t * static_cast<double>(b.X - a.X)),
+                               a.Y + static_cast<geo::coord_t>(t * static_cast<double>(b.Y - a.Y)));
+            if (!inside(q)) ++outside;
+          }
+      CHECK(outside == 0);
+    }
+}
+
 TEST_CASE("infill patterns: every line stays inside the region, also round a hole") {
   const geo::Rings ring{test::rect(0, 0, 20, 20), test::rect(6, 6, 12, 11, false)};
   for (InfillPattern p : kLinePatterns) {
@@ -219,6 +257,100 @@ TEST_CASE("infill patterns: line ends keep half a bead from a cut to a solid reg
   }
 }
 
+// Cuts made of many edges, as the outlines of solid regions sliced from curved meshes are: a run
+// of artificial edges through the ring's first vertex (the last side's upper half and the first
+// side's left half of a square drawn with 20 edges a side), and a hole artificial all round.
+// Every line end keeps half a bead from every cut; lines still reach the real edges.
+TEST_CASE("infill patterns: line ends keep half a bead from runs of cut edges") {
+  geo::Ring outer;
+  const double corners[5][2] = {{0, 0}, {20, 0}, {20, 20}, {0, 20}, {0, 0}};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 20; ++k) {
+      const double t = k / 20.0;
+      outer.push_back(geo::to_point(corners[side][0] + t * (corners[side + 1][0] - corners[side][0]),
+                                    corners[side][1] + t * (corners[side + 1][1] - corners[side][1])));
+    }
+  FillShape shape = fill_shape({outer, test::rect(8, 8, 12, 12, false)}, geo::EdgeKind::Real);
+  for (size_t i = 0; i < 80; ++i)
+    if (i < 10 || i >= 70) shape.kinds[0][i] = geo::EdgeKind::Artificial;
+  for (auto& k : shape.kinds[1]) k = geo::EdgeKind::Artificial;
+  // Distance (mm) from p to the nearest edge of the given kind.
+  auto nearest = [&](const geo::Point& p, geo::EdgeKind kind) {
+    double best = 1e9;
+    for (size_t r = 0; r < shape.rings.size(); ++r) {
+      const auto& ring = shape.rings[r];
+      for (size_t i = 0; i < ring.size(); ++i) {
+        if (shape.kinds[r][i] != kind) continue;
+        const geo::Point &a = ring[i], &b = ring[(i + 1) % ring.size()];
+        const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), bx = geo::to_mm(b.X), by = geo::to_mm(b.Y);
+        const double px = geo::to_mm(p.X), py = geo::to_mm(p.Y), dx = bx - ax, dy = by - ay;
+        const double t = std::clamp(((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+        best = std::min(best, std::hypot(px - ax - t * dx, py - ay - t * dy));
+      }
+    }
+    return best;
+  };
+  for (InfillPattern p : kLinePatterns) {
+    CAPTURE(name_of(p));
+    auto fps = pattern_fill(shape, spec_of(p));
+    REQUIRE(!fps.empty());
+    double to_cut = 1e9, to_real = 1e9;
+    for (const auto& fp : fps)
+      for (const auto& pt : fp.pts) {
+        to_cut = std::min(to_cut, nearest(pt, geo::EdgeKind::Artificial));
+        to_real = std::min(to_real, nearest(pt, geo::EdgeKind::Real));
+      }
+    // Concentric loops are simplified to 10 µm and their arcs are chords to 25 µm.
+    CHECK(to_cut >= 0.5 * kSpacing - (p == InfillPattern::Concentric ? 0.03 : 0.005));
+    CHECK(to_cut <= 0.5 * kSpacing + 0.05);
+    if (p != InfillPattern::Concentric) CHECK(to_real <= 0.005);  // concentric: half a bead inside
+  }
+}
+
+// The waves and gyroid curves are drawn only where they reach the box (at 45° the pattern's own
+// frame holds twice the box): every line must still run across the box's inside, 1 mm in from
+// its sides (the margin the fill leaves round a region), starting and ending with a segment
+// clear of it, and lay its share of line there, at any angle.
+TEST_CASE("infill patterns: lines cross the whole box at any angle") {
+  const double x0 = 0, y0 = 0, x1 = 30, y1 = 24, m = 1.0;
+  // Length of segment ab inside the inner box (Liang-Barsky), mm.
+  auto inside_len = [&](const geo::Point& a, const geo::Point& b) {
+    const double ax = geo::to_mm(a.X), ay = geo::to_mm(a.Y), dx = geo::to_mm(b.X) - ax, dy = geo::to_mm(b.Y) - ay;
+    double t0 = 0, t1 = 1;
+    const double p[4] = {-dx, dx, -dy, dy}, q[4] = {ax - (x0 + m), (x1 - m) - ax, ay - (y0 + m), (y1 - m) - ay};
+    for (int i = 0; i < 4; ++i) {
+      if (p[i] == 0) {
+        if (q[i] < 0) return 0.0;
+        continue;
+      }
+      const double r = q[i] / p[i];
+      if (p[i] < 0) t0 = std::max(t0, r);
+      else t1 = std::min(t1, r);
+    }
+    return t1 > t0 ? (t1 - t0) * std::hypot(dx, dy) : 0.0;
+  };
+  for (InfillPattern p : {InfillPattern::Honeycomb, InfillPattern::Gyroid})
+    for (double angle : {0.0, 20.0, 45.0, 70.0, 135.0})
+      for (double z : {0.3, 1.1, 2.9}) {
+        CAPTURE(name_of(p));
+        CAPTURE(angle);
+        CAPTURE(z);
+        PatternSpec spec = spec_of(p, 0.2, z);
+        spec.angle_deg = angle;
+        const geo::Rings lines = pattern_lines(spec, x0, y0, x1, y1);
+        double len = 0;
+        bool ends_clear = true;
+        for (const auto& l : lines) {
+          REQUIRE(l.size() >= 2);
+          if (inside_len(l[0], l[1]) > 0 || inside_len(l[l.size() - 2], l.back()) > 0) ends_clear = false;
+          for (size_t i = 1; i < l.size(); ++i) len += inside_len(l[i - 1], l[i]);
+        }
+        CHECK(ends_clear);
+        const double area = (x1 - x0 - 2 * m) * (y1 - y0 - 2 * m);
+        CHECK(len * kSpacing == doctest::Approx(plastic_fraction(p, 0.2) * area).epsilon(0.12));
+      }
+}
+
 TEST_CASE("infill patterns: concentric loops follow the border inward") {
   const geo::Rings sq{test::rect(0, 0, 20, 20)};
   auto fps = pattern_fill(fill_shape(sq, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
@@ -245,6 +377,62 @@ TEST_CASE("infill patterns: concentric loops follow the border inward") {
   CHECK(length_mm(fps) == doctest::Approx(4 * (19.55 + 15.05 + 10.55 + 6.05 + 1.55) + 4 * 2.25).epsilon(0.02));
 }
 
+
+namespace {
+// A circle of `n` points, counter-clockwise (clockwise with ccw false).
+geo::Ring disc(double cx, double cy, double r, int n, bool ccw = true) {
+  geo::Ring ring;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n * (ccw ? 1 : -1);
+    ring.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return ring;
+}
+}  // namespace
+
+// Concentric loops go inward until the region is too narrow for the next one; the parts of a
+// region that the next step would shrink to nothing are left out before it (a disc of radius
+// below the pitch, an annulus, with its hole), which must not change the loops of the others:
+// the loops over a region of several parts are those of each part alone. Parts: a 40 mm frame
+// round a 16 mm hole, in the frame a 1.3 mm hole; in the hole, a disc of 3 mm (loops at 2.775
+// and 0.525 mm); above the frame, an annulus 2 to 0.8 mm (one loop round it, two rings; at the
+// next step its outer ring is too thin, and its hole, left alone, would be the region's
+// outermost ring, which would turn the whole list the other way round: offset's orientation).
+TEST_CASE("infill patterns: concentric loops of a region's parts are those of each part alone") {
+  const std::vector<geo::Rings> parts{
+      {test::rect(0, 0, 40, 40), test::rect(12, 12, 28, 28, false), disc(6, 6, 1.3, 64, false)},
+      {disc(16, 16, 3, 128)},
+      {disc(20, 44, 2.0, 96), disc(20, 44, 0.8, 64, false)},
+  };
+  geo::Rings all;
+  double alone_len = 0;
+  size_t alone_pts = 0;
+  for (const auto& part : parts) {
+    auto fps = pattern_fill(fill_shape(part, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
+    REQUIRE(!fps.empty());
+    CHECK(all_inside(fps, part, 0.001));
+    alone_len += length_mm(fps);
+    for (const auto& fp : fps) alone_pts += fp.pts.size();
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  auto fps = pattern_fill(fill_shape(all, geo::EdgeKind::Real), spec_of(InfillPattern::Concentric));
+  CHECK(all_inside(fps, all, 0.001));
+  size_t pts = 0;
+  for (const auto& fp : fps) pts += fp.pts.size();
+  CHECK(pts == alone_pts);
+  CHECK(length_mm(fps) == doctest::Approx(alone_len).epsilon(1e-5));
+  // The disc's two loops and nothing else inside 2.9 mm of its centre.
+  double r_min = 1e9;
+  int on_inner = 0;
+  for (const auto& fp : fps)
+    for (const auto& q : fp.pts) {
+      const double r = std::hypot(geo::to_mm(q.X) - 16, geo::to_mm(q.Y) - 16);
+      r_min = std::min(r_min, r);
+      if (std::abs(r - 0.525) < 0.03) ++on_inner;
+    }
+  CHECK(r_min == doctest::Approx(0.525).epsilon(0.05));
+  CHECK(on_inner >= 3);
+}
 
 // Honeycomb keeps PrusaSlicer's meaning of the density (FillHoneycomb): hexagons whose opposite
 // sides are 2·spacing/ρ apart (side a = 2·spacing/(√3·ρ)), each wave of the pattern repeating
