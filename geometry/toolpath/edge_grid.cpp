@@ -16,6 +16,36 @@ int orient(const Point& a, const Point& b, const Point& c) {
 }
 
 namespace {
+// A vector of doubles on the stack while it holds 16 or fewer.
+class SmallVec {
+ public:
+  void push_back(double v) {
+    if (!on_heap_) {
+      if (n_ < kInline) {
+        inline_[n_++] = v;
+        return;
+      }
+      heap_.assign(inline_, inline_ + n_);
+      on_heap_ = true;
+    }
+    heap_.push_back(v);
+    ++n_;
+  }
+  double* begin() { return on_heap_ ? heap_.data() : inline_; }
+  double* end() { return begin() + n_; }
+  void resize(size_t n) {  // shrinking only
+    n_ = n;
+    if (on_heap_) heap_.resize(n);
+  }
+
+ private:
+  static constexpr size_t kInline = 16;
+  double inline_[kInline];
+  std::vector<double> heap_;
+  size_t n_ = 0;
+  bool on_heap_ = false;
+};
+
 bool on_segment(const Point& a, const Point& b, const Point& p) {
   return std::min(a.X, b.X) <= p.X && p.X <= std::max(a.X, b.X) && std::min(a.Y, b.Y) <= p.Y &&
          p.Y <= std::max(a.Y, b.Y);
@@ -182,23 +212,53 @@ bool EdgeGrid::inside(const Point& p) const {
   if (edges_.empty()) return false;
   if (p.X < x0_ || p.Y < y0_ || p.X > x0_ + coord_t(nx_) * cell_ || p.Y > y0_ + coord_t(ny_) * cell_)
     return false;
-  int row = cy(p.Y);
-  if (const int8_t known = empty_in_[static_cast<size_t>(row) * nx_ + cx(p.X)]; known >= 0) return known == 1;
-  // Ray to +x; each crossing is counted in the one column that contains its x.
-  bool in = false;
-  for (int c = cx(p.X); c < nx_; ++c) {
-    double col_lo = static_cast<double>(x0_ + coord_t(c) * cell_);
-    double col_hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
-    size_t cell = static_cast<size_t>(row) * nx_ + c;
+  const int row = cy(p.Y), c0 = cx(p.X);
+  const size_t base = static_cast<size_t>(row) * nx_;
+  if (const int8_t known = empty_in_[base + c0]; known >= 0) return known == 1;
+  // A ray along the row to the nearest cell no edge passes through, right or left (beyond the
+  // grid: outside): that cell knows whether it is inside (found along the row's middle line; no
+  // edge passes through it, so the same at any height in it), and each crossing on the way
+  // turns the answer. Each crossing is counted in the one column that contains its x.
+  int to = nx_;  // the cell reached: right of c0 (nx_: beyond the grid) ...
+  bool right = true;
+  for (int d = 1;; ++d) {
+    if (c0 + d >= nx_) break;
+    if (empty_in_[base + c0 + d] >= 0) {
+      to = c0 + d;
+      break;
+    }
+    if (c0 - d < 0) continue;
+    if (empty_in_[base + c0 - d] >= 0) {  // ... or left of it
+      to = c0 - d;
+      right = false;
+      break;
+    }
+  }
+  if (right && to == nx_) {  // none to the right: the nearest to the left may still be nearer
+    for (int c = c0 - 1; c >= 0 && c0 - c < nx_ - c0; --c)
+      if (empty_in_[base + c] >= 0) {
+        to = c;
+        right = false;
+        break;
+      }
+  }
+  bool in = to >= 0 && to < nx_ && empty_in_[base + to] == 1;
+  const int from = right ? c0 : to + 1, until = right ? to - 1 : c0;
+  for (int c = from; c <= until; ++c) {
+    const size_t cell = base + c;
+    const double col_lo = c == 0 ? -1e300 : static_cast<double>(x0_ + coord_t(c) * cell_);
+    const double col_hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
     for (uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
       const Edge& e = edges_[items_[k]];
       if ((e.a.Y > p.Y) == (e.b.Y > p.Y)) continue;
       double x = static_cast<double>(e.a.X) + static_cast<double>(p.Y - e.a.Y) *
                                                   static_cast<double>(e.b.X - e.a.X) /
                                                   static_cast<double>(e.b.Y - e.a.Y);
-      if (x < static_cast<double>(p.X)) continue;
-      double owner_lo = c == cx(p.X) ? -1e300 : col_lo;
-      if (x >= owner_lo && x < col_hi) in = !in;
+      // Rightwards the crossings at or right of p (in p's column: all of those), leftwards those
+      // left of it.
+      const bool ahead = right ? x >= static_cast<double>(p.X) && (c == c0 || x >= col_lo) && x < col_hi
+                               : x < static_cast<double>(p.X) && x >= col_lo && (c == c0 || x < col_hi);
+      if (ahead) in = !in;
     }
   }
   return in;
@@ -254,7 +314,8 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
   };
   if (cx(a.X) == cx(b.X) && cy(a.Y) == cy(b.Y) && in_box(a) && in_box(b))
     if (const int8_t known = empty_in_[static_cast<size_t>(cy(a.Y)) * nx_ + cx(a.X)]; known >= 0) return known;
-  std::vector<double> ts;
+  // The crossings' parameters: a few (a bead's width across a border), on the stack.
+  SmallVec ts;
   visit_segment_cells(a, b, [&](int x, int y) {
     size_t c = static_cast<size_t>(y) * nx_ + x;
     for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
@@ -268,8 +329,8 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
     }
   });
   std::sort(ts.begin(), ts.end());
-  ts.erase(std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }),
-           ts.end());
+  ts.resize(static_cast<size_t>(
+      std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }) - ts.begin()));
   // Classify each sub-interval by its midpoint.
   double covered = 0, prev = 0;
   ts.push_back(1.0);
@@ -277,8 +338,7 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
     t = std::clamp(t, 0.0, 1.0);
     if (t > prev) {
       double mid = 0.5 * (prev + t);
-      Point m(a.X + static_cast<coord_t>(std::llround(mid * double(b.X - a.X))),
-              a.Y + static_cast<coord_t>(std::llround(mid * double(b.Y - a.Y))));
+      Point m(a.X + round_units(mid * double(b.X - a.X)), a.Y + round_units(mid * double(b.Y - a.Y)));
       if (inside(m)) covered += t - prev;
     }
     prev = std::max(prev, t);

@@ -58,6 +58,15 @@ class EdgeGrid {
   std::vector<int8_t> empty_in_;  // per cell: 1 inside, 0 outside when no edge passes through it; -1 else
 };
 
+// std::llround(v) for |v| < 2^52, inlined (v - trunc(v) is exact there): half away from zero.
+inline geo::coord_t round_units(double v) {
+  geo::coord_t r = static_cast<geo::coord_t>(v);
+  const double f = v - static_cast<double>(r);
+  if (f >= 0.5) ++r;
+  else if (f <= -0.5) --r;
+  return r;
+}
+
 // Exact orientation of c relative to the directed line ab: >0 left, <0 right, 0 collinear.
 int orient(const geo::Point& a, const geo::Point& b, const geo::Point& c);
 // Whether closed segments ab and cd share a point.

@@ -183,7 +183,7 @@ std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, con
     double miss = 0;
     for (double t : ts) {
       double mx = double(a.X) + dx * t, my = double(a.Y) + dy * t;
-      geo::Point l(std::llround(mx + nx), std::llround(my + ny)), r(std::llround(mx - nx), std::llround(my - ny));
+      geo::Point l(round_units(mx + nx), round_units(my + ny)), r(round_units(mx - nx), round_units(my - ny));
       miss += 1.0 - below.inside_fraction(l, r);
     }
     out[i] = static_cast<float>(miss / static_cast<double>(ts.size()));
