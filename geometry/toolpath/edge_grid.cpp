@@ -168,6 +168,20 @@ bool EdgeGrid::crosses(const Point& a, const Point& b) const {
   if (std::max(a.X, b.X) < x0_ || std::max(a.Y, b.Y) < y0_ || std::min(a.X, b.X) > x1_ ||
       std::min(a.Y, b.Y) > y1_)
     return false;  // clear of every edge's bounding box
+  // Both ends in one cell (short segments, as a region's edges are): the segment lies in it, and
+  // an edge meeting it passes through it, so is listed in it.
+  auto in_grid = [&](const Point& p) {
+    return p.X >= x0_ && p.Y >= y0_ && p.X < x0_ + coord_t(nx_) * cell_ && p.Y < y0_ + coord_t(ny_) * cell_;
+  };
+  if (in_grid(a) && in_grid(b)) {
+    const int c = cx(a.X), r = cy(a.Y);
+    if (c == cx(b.X) && r == cy(b.Y)) {
+      const size_t id = static_cast<size_t>(r) * nx_ + c;
+      for (uint32_t k = start_[id]; k < start_[id + 1]; ++k)
+        if (segments_meet(a, b, edges_[items_[k]].a, edges_[items_[k]].b)) return true;
+      return false;
+    }
+  }
   bool hit = false;
   visit_segment_cells(a, b, [&](int x, int y) {
     if (hit) return;
@@ -303,6 +317,28 @@ int EdgeGrid::box_state(coord_t bx0, coord_t by0, coord_t bx1, coord_t by1) cons
       state = k;
     }
   return state;
+}
+
+bool EdgeGrid::box_clear(coord_t bx0, coord_t by0, coord_t bx1, coord_t by1) const {
+  if (edges_.empty() || bx1 < x0_ || by1 < y0_ || bx0 > x1_ || by0 > y1_) return true;
+  const int c0 = cx(bx0), c1 = cx(bx1), r0 = cy(by0), r1 = cy(by1);
+  const Point corners[4] = {{bx0, by0}, {bx1, by0}, {bx1, by1}, {bx0, by1}};
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      const size_t id = static_cast<size_t>(r) * nx_ + c;
+      for (uint32_t k = start_[id]; k < start_[id + 1]; ++k) {
+        const Edge& e = edges_[items_[k]];
+        if (std::max(e.a.X, e.b.X) < bx0 || std::min(e.a.X, e.b.X) > bx1 || std::max(e.a.Y, e.b.Y) < by0 ||
+            std::min(e.a.Y, e.b.Y) > by1)
+          continue;  // apart along x or y
+        // Apart across the edge's line: every corner strictly on one side.
+        const int s = orient(e.a, e.b, corners[0]);
+        bool apart = s != 0;
+        for (int q = 1; q < 4 && apart; ++q) apart = orient(e.a, e.b, corners[q]) == s;
+        if (!apart) return false;
+      }
+    }
+  return true;
 }
 
 double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {

@@ -31,6 +31,9 @@ class EdgeGrid {
   // every one holds none and lies outside (the box is then wholly inside, resp. outside), -1
   // otherwise. A few cells' flags, for many small questions about a region's interior.
   int box_state(geo::coord_t x0, geo::coord_t y0, geo::coord_t x1, geo::coord_t y1) const;
+  // Whether no edge meets the closed box [x0, x1] × [y0, y1] (exact): all of it is then on one
+  // side, inside or outside, as any point of it.
+  bool box_clear(geo::coord_t x0, geo::coord_t y0, geo::coord_t x1, geo::coord_t y1) const;
 
   // Where segment ab crosses edges: parameter t along ab (0..1), the ring and the edge's index in
   // it (edge i runs from ring[i] to ring[i + 1]). Sorted by t; collinear overlaps are left out.

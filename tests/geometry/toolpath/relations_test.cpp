@@ -412,3 +412,21 @@ TEST_CASE("relations: piece.overhang and point-in-layer answer as before the gri
   CHECK(partial > pieces / 20);  // the walls do straddle the layer below's border
   CHECK(points == 40 * 3 * 300);
 }
+
+TEST_CASE("relations: EdgeGrid::box_clear: no edge meets the box, also edges passing its corners") {
+  // A triangle (0,0) (10,0) (0,10): its long edge runs along x + y = 10.
+  const geo::Rings tri{{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(0, 10)}};
+  for (geo::coord_t cell : {geo::coord_t(0), geo::to_units(0.3), geo::to_units(20.0)}) {
+    const EdgeGrid g(tri, cell);
+    auto box = [&](double x0, double y0, double x1, double y1) {
+      return g.box_clear(geo::to_units(x0), geo::to_units(y0), geo::to_units(x1), geo::to_units(y1));
+    };
+    CHECK(box(1, 1, 3, 3));        // inside
+    CHECK(box(6, 6, 8, 8));        // outside, its corner (6, 6) beyond the long edge: the boxes' overlap is not a meeting
+    CHECK(box(4.9, 5.2, 6, 6));    // its corner a tenth of a millimetre off the long edge
+    CHECK_FALSE(box(4, 4, 6, 6));  // the long edge crosses it, no vertex inside
+    CHECK_FALSE(box(5, 5, 6, 6));  // touches it at a corner
+    CHECK_FALSE(box(-1, -1, 1, 1));  // holds a vertex
+    CHECK(box(20, 20, 30, 30));    // clear of the grid
+  }
+}
