@@ -73,8 +73,9 @@ bool may_hold_disc(const Rings& region, const Rings& below, double r_mm) {
       const double d = std::max(std::abs(k * pitch - lo), std::abs(k * pitch - hi));
       w[j][k + K] = d < rho ? std::sqrt(rho * rho - d * d) : -1;
     }
-  const double y0 = double(box.min_y);
-  const int rows = std::max(1, int(std::ceil(double(box.max_y - box.min_y) / pitch)));
+  const double y0 = double(box.min_y), span = std::ceil(double(box.max_y - box.min_y) / pitch);
+  if (!(span < 1e6)) return true;  // a region kilometres across: left to the boolean
+  const int rows = std::max(1, int(span));
   // Where each ring's edges cross each row: x, and the winding's step there (+1 or −1) for the
   // region (first) or for below (second). Half-open in y, as a point-in-polygon ray is.
   struct Cross {

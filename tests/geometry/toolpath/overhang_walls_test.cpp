@@ -173,6 +173,9 @@ TEST_CASE("overhang walls: the early-out rejects crescents and strips narrower t
   const geo::Rings holed{rect(0, 0, 20, 20), hole};
   CHECK(toolpath::may_hold_disc({rect(0, 0, 20, 20)}, holed, r));
   CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 4)}, {}, r));
+  // A region 300 m tall would take a million rows: left to the boolean (conservatively "may"),
+  // not a million rows' memory.
+  CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 3e5)}, {rect(0, 0, 10, 3e5)}, r));
 }
 
 TEST_CASE("overhang walls: the early-out never rejects what the boolean and the shrink let through") {
