@@ -56,7 +56,9 @@ bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& 
   if (std::max(a.X, b.X) < std::min(c.X, d.X) || std::max(c.X, d.X) < std::min(a.X, b.X) ||
       std::max(a.Y, b.Y) < std::min(c.Y, d.Y) || std::max(c.Y, d.Y) < std::min(a.Y, b.Y))
     return false;
-  int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d);
+  if (o1 == o2 && o1 != 0) return false;  // c and d strictly on one side of ab
+  const int o3 = orient(c, d, a), o4 = orient(c, d, b);
   if (o1 != o2 && o3 != o4) return true;
   return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
          (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
