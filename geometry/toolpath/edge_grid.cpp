@@ -208,11 +208,18 @@ bool EdgeGrid::along(const Point& a, const Point& b, coord_t tol) const {
     return len2 > 0 ? cr * cr / len2
                     : double(p.X - e.a.X) * double(p.X - e.a.X) + double(p.Y - e.a.Y) * double(p.Y - e.a.Y);
   };
+  // An edge the segment runs along has the midpoint within tol of its line and its projection
+  // within tol of its ends, so within its bounding box grown by 2 tol (and a unit or two for the
+  // rounded midpoint): edges farther off are passed by four comparisons.
+  const coord_t grow = 2 * tol + 2;
   for (int y = std::max(0, my - 1); y <= std::min(ny_ - 1, my + 1); ++y)
     for (int x = std::max(0, mx - 1); x <= std::min(nx_ - 1, mx + 1); ++x) {
       size_t c = static_cast<size_t>(y) * nx_ + x;
       for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
         const Edge& e = edges_[items_[k]];
+        if (m.X < std::min(e.a.X, e.b.X) - grow || m.X > std::max(e.a.X, e.b.X) + grow ||
+            m.Y < std::min(e.a.Y, e.b.Y) - grow || m.Y > std::max(e.a.Y, e.b.Y) + grow)
+          continue;
         if (dist2_line(e, a) > t2 || dist2_line(e, b) > t2) continue;
         double ex = double(e.b.X - e.a.X), ey = double(e.b.Y - e.a.Y);
         double len2 = ex * ex + ey * ey;

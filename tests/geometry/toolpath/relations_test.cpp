@@ -430,3 +430,49 @@ TEST_CASE("relations: EdgeGrid::box_clear: no edge meets the box, also edges pas
     CHECK(box(20, 20, 30, 30));    // clear of the grid
   }
 }
+
+TEST_CASE("relations: EdgeGrid::along answers as testing every edge does, near edges and off them") {
+  // Segments laid along a layer's edges, a little off them, past their ends, and across them:
+  // the grid (which passes by edges far from the segment's midpoint in four comparisons) says
+  // what the definition over every edge says.
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  const geo::Rings rings{wobbly(rng, 0, 0, 20, 2, 300)};
+  const RefEdges ref(rings);
+  const geo::coord_t tol = geo::to_units(0.01);
+  auto along_ref = [&](const geo::Point& a, const geo::Point& b) {
+    const geo::Point m((a.X + b.X) / 2, (a.Y + b.Y) / 2);
+    const double t2 = double(tol) * double(tol);
+    for (const auto& [ea, eb] : ref.edges) {
+      const double ex = double(eb.X - ea.X), ey = double(eb.Y - ea.Y), len2 = ex * ex + ey * ey;
+      auto d2 = [&](const geo::Point& p) {
+        const double cr = ex * double(p.Y - ea.Y) - ey * double(p.X - ea.X);
+        return cr * cr / len2;
+      };
+      if (d2(a) > t2 || d2(b) > t2) continue;
+      const double t = (ex * double(m.X - ea.X) + ey * double(m.Y - ea.Y)) / len2, slack = double(tol) / std::sqrt(len2);
+      if (t >= -slack && t <= 1 + slack) return true;
+    }
+    return false;
+  };
+  int yes = 0, no = 0;
+  for (geo::coord_t cell : {geo::coord_t(0), geo::to_units(1.0)}) {
+    const EdgeGrid g(rings, cell);
+    for (int k = 0; k < 3000; ++k) {
+      const auto& [ea, eb] = ref.edges[static_cast<size_t>(u(rng) * double(ref.edges.size())) % ref.edges.size()];
+      const double ex = double(eb.X - ea.X), ey = double(eb.Y - ea.Y), len = std::hypot(ex, ey);
+      const double nx = -ey / len, ny = ex / len;
+      auto at = [&](double s, double off) {  // s along the edge (0..1), off across it (units)
+        return geo::Point(std::llround(double(ea.X) + ex * s + nx * off), std::llround(double(ea.Y) + ey * s + ny * off));
+      };
+      const double off = (u(rng) * 3 - 1.5) * double(tol);
+      const double s0 = u(rng) * 1.4 - 0.2, s1 = s0 + (u(rng) - 0.5) * 0.8;
+      const geo::Point a = at(s0, off), b = k % 5 == 0 ? at(s1, off + (u(rng) - 0.5) * 1e6) : at(s1, off * (0.5 + u(rng)));
+      const bool want = along_ref(a, b);
+      CHECK(g.along(a, b, tol) == want);
+      (want ? yes : no) += 1;
+    }
+  }
+  CHECK(yes > 1000);
+  CHECK(no > 1000);
+}
