@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tranche::toolpath {
 
@@ -97,16 +98,21 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   nx_ = static_cast<int>(w / static_cast<double>(cell_)) + 1;
   ny_ = static_cast<int>(h / static_cast<double>(cell_)) + 1;
   size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
+  // The cells of each edge, walked once: (cell, edge) in edge order, then sorted by cell
+  // (counting, stable: each cell's edges stay in edge order).
   std::vector<uint32_t> count(cells + 1, 0);
-  auto each_cell = [&](const Edge& e, auto&& f) {
-    visit_segment_cells(e.a, e.b, [&](int x, int y) { f(static_cast<size_t>(y) * nx_ + x); });
-  };
-  for (const auto& e : edges_) each_cell(e, [&](size_t c) { ++count[c + 1]; });
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  pairs.reserve(edges_.size() * 2);
+  for (uint32_t i = 0; i < edges_.size(); ++i)
+    visit_segment_cells(edges_[i].a, edges_[i].b, [&](int x, int y) {
+      const auto c = static_cast<uint32_t>(static_cast<size_t>(y) * nx_ + x);
+      pairs.emplace_back(c, i);
+      ++count[c + 1];
+    });
   for (size_t i = 1; i <= cells; ++i) count[i] += count[i - 1];
   start_ = count;
   items_.resize(count[cells]);
-  for (uint32_t i = 0; i < edges_.size(); ++i)
-    each_cell(edges_[i], [&](size_t c) { items_[count[c]++] = i; });
+  for (const auto& [c, i] : pairs) items_[count[c]++] = i;
   // A cell no edge passes through is wholly inside or wholly outside: its centre's answer, found
   // for a whole row at once (right to left, the crossings of the row's middle line counted in
   // the column that holds them, as inside() counts them), answers inside() there in one step.
