@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tranche::toolpath {
 
@@ -16,6 +17,36 @@ int orient(const Point& a, const Point& b, const Point& c) {
 }
 
 namespace {
+// A vector of doubles on the stack while it holds 16 or fewer.
+class SmallVec {
+ public:
+  void push_back(double v) {
+    if (!on_heap_) {
+      if (n_ < kInline) {
+        inline_[n_++] = v;
+        return;
+      }
+      heap_.assign(inline_, inline_ + n_);
+      on_heap_ = true;
+    }
+    heap_.push_back(v);
+    ++n_;
+  }
+  double* begin() { return on_heap_ ? heap_.data() : inline_; }
+  double* end() { return begin() + n_; }
+  void resize(size_t n) {  // shrinking only
+    n_ = n;
+    if (on_heap_) heap_.resize(n);
+  }
+
+ private:
+  static constexpr size_t kInline = 16;
+  double inline_[kInline];
+  std::vector<double> heap_;
+  size_t n_ = 0;
+  bool on_heap_ = false;
+};
+
 bool on_segment(const Point& a, const Point& b, const Point& p) {
   return std::min(a.X, b.X) <= p.X && p.X <= std::max(a.X, b.X) && std::min(a.Y, b.Y) <= p.Y &&
          p.Y <= std::max(a.Y, b.Y);
@@ -26,7 +57,9 @@ bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& 
   if (std::max(a.X, b.X) < std::min(c.X, d.X) || std::max(c.X, d.X) < std::min(a.X, b.X) ||
       std::max(a.Y, b.Y) < std::min(c.Y, d.Y) || std::max(c.Y, d.Y) < std::min(a.Y, b.Y))
     return false;
-  int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d);
+  if (o1 == o2 && o1 != 0) return false;  // c and d strictly on one side of ab
+  const int o3 = orient(c, d, a), o4 = orient(c, d, b);
   if (o1 != o2 && o3 != o4) return true;
   return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
          (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
@@ -65,16 +98,21 @@ EdgeGrid::EdgeGrid(const geo::Rings& rings, coord_t cell) {
   nx_ = static_cast<int>(w / static_cast<double>(cell_)) + 1;
   ny_ = static_cast<int>(h / static_cast<double>(cell_)) + 1;
   size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
+  // The cells of each edge, walked once: (cell, edge) in edge order, then sorted by cell
+  // (counting, stable: each cell's edges stay in edge order).
   std::vector<uint32_t> count(cells + 1, 0);
-  auto each_cell = [&](const Edge& e, auto&& f) {
-    visit_segment_cells(e.a, e.b, [&](int x, int y) { f(static_cast<size_t>(y) * nx_ + x); });
-  };
-  for (const auto& e : edges_) each_cell(e, [&](size_t c) { ++count[c + 1]; });
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  pairs.reserve(edges_.size() * 2);
+  for (uint32_t i = 0; i < edges_.size(); ++i)
+    visit_segment_cells(edges_[i].a, edges_[i].b, [&](int x, int y) {
+      const auto c = static_cast<uint32_t>(static_cast<size_t>(y) * nx_ + x);
+      pairs.emplace_back(c, i);
+      ++count[c + 1];
+    });
   for (size_t i = 1; i <= cells; ++i) count[i] += count[i - 1];
   start_ = count;
   items_.resize(count[cells]);
-  for (uint32_t i = 0; i < edges_.size(); ++i)
-    each_cell(edges_[i], [&](size_t c) { items_[count[c]++] = i; });
+  for (const auto& [c, i] : pairs) items_[count[c]++] = i;
   // A cell no edge passes through is wholly inside or wholly outside: its centre's answer, found
   // for a whole row at once (right to left, the crossings of the row's middle line counted in
   // the column that holds them, as inside() counts them), answers inside() there in one step.
@@ -138,6 +176,20 @@ bool EdgeGrid::crosses(const Point& a, const Point& b) const {
   if (std::max(a.X, b.X) < x0_ || std::max(a.Y, b.Y) < y0_ || std::min(a.X, b.X) > x1_ ||
       std::min(a.Y, b.Y) > y1_)
     return false;  // clear of every edge's bounding box
+  // Both ends in one cell (short segments, as a region's edges are): the segment lies in it, and
+  // an edge meeting it passes through it, so is listed in it.
+  auto in_grid = [&](const Point& p) {
+    return p.X >= x0_ && p.Y >= y0_ && p.X < x0_ + coord_t(nx_) * cell_ && p.Y < y0_ + coord_t(ny_) * cell_;
+  };
+  if (in_grid(a) && in_grid(b)) {
+    const int c = cx(a.X), r = cy(a.Y);
+    if (c == cx(b.X) && r == cy(b.Y)) {
+      const size_t id = static_cast<size_t>(r) * nx_ + c;
+      for (uint32_t k = start_[id]; k < start_[id + 1]; ++k)
+        if (segments_meet(a, b, edges_[items_[k]].a, edges_[items_[k]].b)) return true;
+      return false;
+    }
+  }
   bool hit = false;
   visit_segment_cells(a, b, [&](int x, int y) {
     if (hit) return;
@@ -162,11 +214,18 @@ bool EdgeGrid::along(const Point& a, const Point& b, coord_t tol) const {
     return len2 > 0 ? cr * cr / len2
                     : double(p.X - e.a.X) * double(p.X - e.a.X) + double(p.Y - e.a.Y) * double(p.Y - e.a.Y);
   };
+  // An edge the segment runs along has the midpoint within tol of its line and its projection
+  // within tol of its ends, so within its bounding box grown by 2 tol (and a unit or two for the
+  // rounded midpoint): edges farther off are passed by four comparisons.
+  const coord_t grow = 2 * tol + 2;
   for (int y = std::max(0, my - 1); y <= std::min(ny_ - 1, my + 1); ++y)
     for (int x = std::max(0, mx - 1); x <= std::min(nx_ - 1, mx + 1); ++x) {
       size_t c = static_cast<size_t>(y) * nx_ + x;
       for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
         const Edge& e = edges_[items_[k]];
+        if (m.X < std::min(e.a.X, e.b.X) - grow || m.X > std::max(e.a.X, e.b.X) + grow ||
+            m.Y < std::min(e.a.Y, e.b.Y) - grow || m.Y > std::max(e.a.Y, e.b.Y) + grow)
+          continue;
         if (dist2_line(e, a) > t2 || dist2_line(e, b) > t2) continue;
         double ex = double(e.b.X - e.a.X), ey = double(e.b.Y - e.a.Y);
         double len2 = ex * ex + ey * ey;
@@ -182,23 +241,53 @@ bool EdgeGrid::inside(const Point& p) const {
   if (edges_.empty()) return false;
   if (p.X < x0_ || p.Y < y0_ || p.X > x0_ + coord_t(nx_) * cell_ || p.Y > y0_ + coord_t(ny_) * cell_)
     return false;
-  int row = cy(p.Y);
-  if (const int8_t known = empty_in_[static_cast<size_t>(row) * nx_ + cx(p.X)]; known >= 0) return known == 1;
-  // Ray to +x; each crossing is counted in the one column that contains its x.
-  bool in = false;
-  for (int c = cx(p.X); c < nx_; ++c) {
-    double col_lo = static_cast<double>(x0_ + coord_t(c) * cell_);
-    double col_hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
-    size_t cell = static_cast<size_t>(row) * nx_ + c;
+  const int row = cy(p.Y), c0 = cx(p.X);
+  const size_t base = static_cast<size_t>(row) * nx_;
+  if (const int8_t known = empty_in_[base + c0]; known >= 0) return known == 1;
+  // A ray along the row to the nearest cell no edge passes through, right or left (beyond the
+  // grid: outside): that cell knows whether it is inside (found along the row's middle line; no
+  // edge passes through it, so the same at any height in it), and each crossing on the way
+  // turns the answer. Each crossing is counted in the one column that contains its x.
+  int to = nx_;  // the cell reached: right of c0 (nx_: beyond the grid) ...
+  bool right = true;
+  for (int d = 1;; ++d) {
+    if (c0 + d >= nx_) break;
+    if (empty_in_[base + c0 + d] >= 0) {
+      to = c0 + d;
+      break;
+    }
+    if (c0 - d < 0) continue;
+    if (empty_in_[base + c0 - d] >= 0) {  // ... or left of it
+      to = c0 - d;
+      right = false;
+      break;
+    }
+  }
+  if (right && to == nx_) {  // none to the right: the nearest to the left may still be nearer
+    for (int c = c0 - 1; c >= 0 && c0 - c < nx_ - c0; --c)
+      if (empty_in_[base + c] >= 0) {
+        to = c;
+        right = false;
+        break;
+      }
+  }
+  bool in = to >= 0 && to < nx_ && empty_in_[base + to] == 1;
+  const int from = right ? c0 : to + 1, until = right ? to - 1 : c0;
+  for (int c = from; c <= until; ++c) {
+    const size_t cell = base + c;
+    const double col_lo = c == 0 ? -1e300 : static_cast<double>(x0_ + coord_t(c) * cell_);
+    const double col_hi = c + 1 == nx_ ? 1e300 : static_cast<double>(x0_ + coord_t(c + 1) * cell_);
     for (uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
       const Edge& e = edges_[items_[k]];
       if ((e.a.Y > p.Y) == (e.b.Y > p.Y)) continue;
       double x = static_cast<double>(e.a.X) + static_cast<double>(p.Y - e.a.Y) *
                                                   static_cast<double>(e.b.X - e.a.X) /
                                                   static_cast<double>(e.b.Y - e.a.Y);
-      if (x < static_cast<double>(p.X)) continue;
-      double owner_lo = c == cx(p.X) ? -1e300 : col_lo;
-      if (x >= owner_lo && x < col_hi) in = !in;
+      // Rightwards the crossings at or right of p (in p's column: all of those), leftwards those
+      // left of it.
+      const bool ahead = right ? x >= static_cast<double>(p.X) && (c == c0 || x >= col_lo) && x < col_hi
+                               : x < static_cast<double>(p.X) && x >= col_lo && (c == c0 || x < col_hi);
+      if (ahead) in = !in;
     }
   }
   return in;
@@ -245,6 +334,28 @@ int EdgeGrid::box_state(coord_t bx0, coord_t by0, coord_t bx1, coord_t by1) cons
   return state;
 }
 
+bool EdgeGrid::box_clear(coord_t bx0, coord_t by0, coord_t bx1, coord_t by1) const {
+  if (edges_.empty() || bx1 < x0_ || by1 < y0_ || bx0 > x1_ || by0 > y1_) return true;
+  const int c0 = cx(bx0), c1 = cx(bx1), r0 = cy(by0), r1 = cy(by1);
+  const Point corners[4] = {{bx0, by0}, {bx1, by0}, {bx1, by1}, {bx0, by1}};
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      const size_t id = static_cast<size_t>(r) * nx_ + c;
+      for (uint32_t k = start_[id]; k < start_[id + 1]; ++k) {
+        const Edge& e = edges_[items_[k]];
+        if (std::max(e.a.X, e.b.X) < bx0 || std::min(e.a.X, e.b.X) > bx1 || std::max(e.a.Y, e.b.Y) < by0 ||
+            std::min(e.a.Y, e.b.Y) > by1)
+          continue;  // apart along x or y
+        // Apart across the edge's line: every corner strictly on one side.
+        const int s = orient(e.a, e.b, corners[0]);
+        bool apart = s != 0;
+        for (int q = 1; q < 4 && apart; ++q) apart = orient(e.a, e.b, corners[q]) == s;
+        if (!apart) return false;
+      }
+    }
+  return true;
+}
+
 double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
   if (edges_.empty()) return 0.0;
   // Both ends in one cell no edge passes through (a bead's width across, deep inside or far
@@ -254,7 +365,8 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
   };
   if (cx(a.X) == cx(b.X) && cy(a.Y) == cy(b.Y) && in_box(a) && in_box(b))
     if (const int8_t known = empty_in_[static_cast<size_t>(cy(a.Y)) * nx_ + cx(a.X)]; known >= 0) return known;
-  std::vector<double> ts;
+  // The crossings' parameters: a few (a bead's width across a border), on the stack.
+  SmallVec ts;
   visit_segment_cells(a, b, [&](int x, int y) {
     size_t c = static_cast<size_t>(y) * nx_ + x;
     for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
@@ -268,8 +380,8 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
     }
   });
   std::sort(ts.begin(), ts.end());
-  ts.erase(std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }),
-           ts.end());
+  ts.resize(static_cast<size_t>(
+      std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }) - ts.begin()));
   // Classify each sub-interval by its midpoint.
   double covered = 0, prev = 0;
   ts.push_back(1.0);
@@ -277,8 +389,7 @@ double EdgeGrid::inside_fraction(const Point& a, const Point& b) const {
     t = std::clamp(t, 0.0, 1.0);
     if (t > prev) {
       double mid = 0.5 * (prev + t);
-      Point m(a.X + static_cast<coord_t>(std::llround(mid * double(b.X - a.X))),
-              a.Y + static_cast<coord_t>(std::llround(mid * double(b.Y - a.Y))));
+      Point m(a.X + round_units(mid * double(b.X - a.X)), a.Y + round_units(mid * double(b.Y - a.Y)));
       if (inside(m)) covered += t - prev;
     }
     prev = std::max(prev, t);

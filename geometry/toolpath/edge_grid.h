@@ -31,6 +31,9 @@ class EdgeGrid {
   // every one holds none and lies outside (the box is then wholly inside, resp. outside), -1
   // otherwise. A few cells' flags, for many small questions about a region's interior.
   int box_state(geo::coord_t x0, geo::coord_t y0, geo::coord_t x1, geo::coord_t y1) const;
+  // Whether no edge meets the closed box [x0, x1] × [y0, y1] (exact): all of it is then on one
+  // side, inside or outside, as any point of it.
+  bool box_clear(geo::coord_t x0, geo::coord_t y0, geo::coord_t x1, geo::coord_t y1) const;
 
   // Where segment ab crosses edges: parameter t along ab (0..1), the ring and the edge's index in
   // it (edge i runs from ring[i] to ring[i + 1]). Sorted by t; collinear overlaps are left out.
@@ -57,6 +60,15 @@ class EdgeGrid {
   std::vector<uint32_t> items_;
   std::vector<int8_t> empty_in_;  // per cell: 1 inside, 0 outside when no edge passes through it; -1 else
 };
+
+// std::llround(v) for |v| < 2^52, inlined (v - trunc(v) is exact there): half away from zero.
+inline geo::coord_t round_units(double v) {
+  geo::coord_t r = static_cast<geo::coord_t>(v);
+  const double f = v - static_cast<double>(r);
+  if (f >= 0.5) ++r;
+  else if (f <= -0.5) --r;
+  return r;
+}
 
 // Exact orientation of c relative to the directed line ab: >0 left, <0 right, 0 collinear.
 int orient(const geo::Point& a, const geo::Point& b, const geo::Point& c);

@@ -43,6 +43,16 @@ struct OverhangWallSplit {
 OverhangWallSplit split_overhang_walls(const geo::Rings& island, const geo::Rings& below, double band_mm,
                                        double bead_mm, double anchor_mm = kBridgeAnchorMm);
 
+// Whether `region` less `below` (both rings, non-zero fill) may hold a disc of radius `r_mm`:
+// false only when it surely holds none a little smaller (r_mm - kDiscMarginMm), so that
+// shrinking their difference by r_mm leaves nothing. No boolean: the stretches of both along
+// rows a quarter of the radius apart, a disc's chords on the rows near its centre sought in
+// them. split_overhang_walls' early-out: most islands of a curved part rest on the layer below
+// all but a crescent nowhere kMinAirAcrossMm wide, and this answers them at a small part of the
+// cost of the difference and the shrink.
+inline constexpr double kDiscMarginMm = 0.025;  // 5 × the offsets' arc tolerance (geometry/toolpath/clip.cpp)
+bool may_hold_disc(const geo::Rings& region, const geo::Rings& below, double r_mm);
+
 // The direction (degrees, 0..180) of straight lines across `air` that are best anchored on
 // `below`: in 36 directions, lines across `air` whose ends, carried on by `hold_mm`, land on
 // `below` at both ends hang over their length, at one end over twice it (out and back, as a

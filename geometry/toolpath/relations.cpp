@@ -167,10 +167,17 @@ std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, con
     if (len <= 0) continue;
     // A bead wholly inside (outside) the layer below's cells that hold no edge: 0 (1).
     const geo::coord_t h = static_cast<geo::coord_t>(std::ceil(half)) + 1;
-    if (const int s = below.box_state(std::min(a.X, b.X) - h, std::min(a.Y, b.Y) - h, std::max(a.X, b.X) + h,
-                                      std::max(a.Y, b.Y) + h);
-        s >= 0) {
+    const geo::coord_t bx0 = std::min(a.X, b.X) - h, by0 = std::min(a.Y, b.Y) - h, bx1 = std::max(a.X, b.X) + h,
+                       by1 = std::max(a.Y, b.Y) + h;
+    if (const int s = below.box_state(bx0, by0, bx1, by1); s >= 0) {
       out[i] = s == 1 ? 0.0f : 1.0f;
+      continue;
+    }
+    // No edge of the layer below meets that box (a wall beside the border, not over it): every
+    // sample across the bead, and every point at which they are classified, lies in it, on the
+    // side its corner is.
+    if (below.box_clear(bx0, by0, bx1, by1)) {
+      out[i] = below.inside(geo::Point(bx0, by0)) ? 0.0f : 1.0f;
       continue;
     }
     double nx = -dy / len * half, ny = dx / len * half;
@@ -183,7 +190,7 @@ std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm, con
     double miss = 0;
     for (double t : ts) {
       double mx = double(a.X) + dx * t, my = double(a.Y) + dy * t;
-      geo::Point l(std::llround(mx + nx), std::llround(my + ny)), r(std::llround(mx - nx), std::llround(my - ny));
+      geo::Point l(round_units(mx + nx), round_units(my + ny)), r(round_units(mx - nx), round_units(my - ny));
       miss += 1.0 - below.inside_fraction(l, r);
     }
     out[i] = static_cast<float>(miss / static_cast<double>(ts.size()));

@@ -2,7 +2,9 @@
 // lies over air, what becomes a bridge, in which direction its lines run, and the walls kept.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "fixtures.h"
 #include "geometry/toolpath/clip.h"
@@ -119,4 +121,90 @@ TEST_CASE("overhang walls: a loop cut by a region comes out as one piece around 
   for (size_t i = 0; i + 1 < pieces[0].size(); ++i)
     len += geo::to_mm(std::hypot(double(pieces[0][i + 1].X - pieces[0][i].X), double(pieces[0][i + 1].Y - pieces[0][i].Y)));
   CHECK(len == doctest::Approx(2 + 10 + 10 + 5).epsilon(1e-6));  // (0,2) down, along the bottom, up, to (5,10)
+}
+
+namespace {
+
+// A circle of `n` vertices, counter-clockwise.
+geo::Ring circle(double cx, double cy, double r, int n = 96) {
+  geo::Ring c;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    c.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return c;
+}
+
+// What split_overhang_walls asked before the early-out: its difference shrunk by r, not empty.
+bool holds_disc(const geo::Rings& region, const geo::Rings& below, double r) {
+  return !toolpath::offset(toolpath::difference(region, below), -r).empty();
+}
+
+}  // namespace
+
+TEST_CASE("overhang walls: the early-out rejects crescents and strips narrower than the disc, not wider ones") {
+  const double r = 0.5 * toolpath::kMinAirAcrossMm;
+  // A curved layer over the one below shifted 1.5 mm: a crescent 1.5 mm across at most. A disc
+  // of radius 1 does not fit; the early-out says so, and the boolean agrees.
+  const geo::Rings island{circle(0, 0, 10)};
+  CHECK_FALSE(holds_disc(island, {circle(1.5, 0, 10)}, r));
+  CHECK_FALSE(toolpath::may_hold_disc(island, {circle(1.5, 0, 10)}, r));
+  // Strips along y 1.5 and 1.9 mm wide (the rows cross them: exact in x), along x 1.25 mm wide
+  // (found from the rows a quarter of the radius apart: up to 2 (r − margin − pitch − slot) =
+  // 1.34 mm sure to be rejected), and along a diagonal 1.8 mm wide.
+  for (double wide : {1.5, 1.9}) CHECK_FALSE(toolpath::may_hold_disc({rect(0, 0, 10, 10)}, {rect(wide, -1, 11, 11)}, r));
+  for (double at : {0.0, 0.05, 0.1, 0.15, 0.2}) {
+    CHECK_FALSE(toolpath::may_hold_disc({rect(0, at, 10, 10 + at)}, {rect(-1, at + 1.25, 11, 11 + at)}, r));
+    CHECK_FALSE(toolpath::may_hold_disc({rect(0, 0, 10, 10 + at)}, {rect(-1, 1.25, 11, 11 + at)}, r));
+  }
+  geo::Ring diag{geo::to_point(0, 0), geo::to_point(20, 20), geo::to_point(20 - 1.8 / std::sqrt(2), 20 + 1.8 / std::sqrt(2)),
+                 geo::to_point(-1.8 / std::sqrt(2), 1.8 / std::sqrt(2))};  // 1.8 mm wide
+  CHECK_FALSE(toolpath::may_hold_disc({diag}, {}, r));
+  // Resting wholly on the layer below; nothing at all.
+  CHECK_FALSE(toolpath::may_hold_disc({rect(1, 1, 9, 9)}, {rect(0, 0, 10, 10)}, r));
+  CHECK_FALSE(toolpath::may_hold_disc({}, {rect(0, 0, 10, 10)}, r));
+  // Shifted 2.5 mm, the crescent holds a disc of radius 1.25; a strip 2.1 mm wide; the island over
+  // a hole 3 mm across in the layer below; over nothing: the early-out lets each through.
+  CHECK(holds_disc(island, {circle(2.5, 0, 10)}, r));
+  CHECK(toolpath::may_hold_disc(island, {circle(2.5, 0, 10)}, r));
+  CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 10)}, {rect(2.1, -1, 11, 11)}, r));
+  geo::Ring hole = circle(10, 10, 1.5);
+  std::reverse(hole.begin(), hole.end());
+  const geo::Rings holed{rect(0, 0, 20, 20), hole};
+  CHECK(toolpath::may_hold_disc({rect(0, 0, 20, 20)}, holed, r));
+  CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 4)}, {}, r));
+  // A region 300 m tall would take a million rows: left to the boolean (conservatively "may"),
+  // not a million rows' memory.
+  CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 3e5)}, {rect(0, 0, 10, 3e5)}, r));
+}
+
+TEST_CASE("overhang walls: the early-out never rejects what the boolean and the shrink let through") {
+  // Random blobs (unions of discs) over random blobs shifted a little: whenever the difference
+  // shrunk by r is not empty, may_hold_disc must say it may be; and it must reject most of the
+  // rest (it is worth nothing otherwise).
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(0, 1);
+  int exact = 0, rejected = 0, cases = 0;
+  for (int t = 0; t < 300; ++t) {
+    auto blob = [&](double dx, double dy) {
+      geo::Rings b;
+      for (int k = 0; k < 3; ++k) b.push_back(circle(dx + 8 * u(rng), dy + 8 * u(rng), 2 + 6 * u(rng), 24 + int(60 * u(rng))));
+      return toolpath::union_of(b, {});
+    };
+    const geo::Rings below = blob(0, 0);
+    const double shift = 3 * u(rng), a = 2 * M_PI * u(rng);
+    geo::Rings island = below;
+    for (auto& ring : island)
+      for (auto& p : ring) p.X += geo::to_units(shift * std::cos(a)), p.Y += geo::to_units(shift * std::sin(a));
+    if (t % 3 == 0) island = toolpath::union_of(island, blob(0, 0));  // some of another shape
+    for (double r : {1.0, 0.5 + u(rng)}) {
+      ++cases;
+      const bool holds = holds_disc(island, below, r), may = toolpath::may_hold_disc(island, below, r);
+      if (holds) ++exact;
+      if (holds) CHECK(may);
+      if (!may) ++rejected;
+    }
+  }
+  CHECK(exact > 30);  // both kinds of case occur
+  CHECK(rejected > (cases - exact) / 2);
 }

@@ -1,6 +1,8 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <thread>
 
 #include "fixtures.h"
@@ -284,4 +286,193 @@ TEST_CASE("relations: the solid fill with the vertical shell is the union of wha
     CHECK(solid_region(fill, grid, shared, spec) == got);
   }
   CHECK(total > 100);  // the shell made a good part of the fill solid: the comparison saw it
+}
+
+namespace {
+
+// The layer-below questions as they were answered before the grid's shortcuts (a ray to +x over
+// every edge, crossings at or right of the point; a bead's samples split at their crossings, each
+// stretch classified by its rounded midpoint; std::llround): piece.overhang must not change.
+struct RefEdges {
+  std::vector<std::pair<geo::Point, geo::Point>> edges;
+  explicit RefEdges(const geo::Rings& rings) {
+    for (const auto& r : rings)
+      for (size_t i = 0; i < r.size(); ++i) edges.emplace_back(r[i], r[(i + 1) % r.size()]);
+  }
+  bool inside(const geo::Point& p) const {
+    bool in = false;
+    for (const auto& [a, b] : edges) {
+      if ((a.Y > p.Y) == (b.Y > p.Y)) continue;
+      const double x = double(a.X) + double(p.Y - a.Y) * double(b.X - a.X) / double(b.Y - a.Y);
+      if (x >= double(p.X)) in = !in;
+    }
+    return in;
+  }
+  double inside_fraction(const geo::Point& a, const geo::Point& b) const {
+    std::vector<double> ts;
+    for (const auto& [c, d] : edges) {
+      if (!segments_meet(a, b, c, d)) continue;
+      const double rx = double(b.X - a.X), ry = double(b.Y - a.Y), sx = double(d.X - c.X), sy = double(d.Y - c.Y);
+      const double den = rx * sy - ry * sx;
+      if (den == 0) continue;
+      ts.push_back((double(c.X - a.X) * sy - double(c.Y - a.Y) * sx) / den);
+    }
+    std::sort(ts.begin(), ts.end());
+    ts.erase(std::unique(ts.begin(), ts.end(), [](double u, double v) { return std::abs(u - v) < 1e-12; }), ts.end());
+    double covered = 0, prev = 0;
+    ts.push_back(1.0);
+    for (double t : ts) {
+      t = std::clamp(t, 0.0, 1.0);
+      if (t > prev) {
+        const double mid = 0.5 * (prev + t);
+        const geo::Point m(a.X + std::llround(mid * double(b.X - a.X)), a.Y + std::llround(mid * double(b.Y - a.Y)));
+        if (inside(m)) covered += t - prev;
+      }
+      prev = std::max(prev, t);
+    }
+    return covered;
+  }
+  std::vector<float> overhang_fractions(const geo::Ring& pts, double width_mm) const {
+    const size_t n = pts.size() < 2 ? 0 : pts.size() - 1;
+    std::vector<float> out(n, 0.0f);
+    const double half = 0.5 * width_mm * geo::kUnitsPerMm;
+    for (size_t i = 0; i < n; ++i) {
+      const geo::Point &a = pts[i], &b = pts[i + 1];
+      const double dx = double(b.X - a.X), dy = double(b.Y - a.Y), len = std::hypot(dx, dy);
+      if (len <= 0) continue;
+      const double nx = -dy / len * half, ny = dx / len * half;
+      std::vector<double> ts{0.25, 0.5, 0.75};
+      if (len < width_mm * geo::kUnitsPerMm) ts = {0.5};
+      double miss = 0;
+      for (double t : ts) {
+        const double mx = double(a.X) + dx * t, my = double(a.Y) + dy * t;
+        const geo::Point l(std::llround(mx + nx), std::llround(my + ny)), r(std::llround(mx - nx), std::llround(my - ny));
+        miss += 1.0 - inside_fraction(l, r);
+      }
+      out[i] = static_cast<float>(miss / static_cast<double>(ts.size()));
+    }
+    return out;
+  }
+};
+
+// A wobbly ring of n vertices round (cx, cy), radius r ± wobble.
+geo::Ring wobbly(std::mt19937& rng, double cx, double cy, double r, double wobble, int n) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  geo::Ring ring;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n, rr = r + wobble * u(rng);
+    ring.push_back(geo::to_point(cx + rr * std::cos(a), cy + rr * std::sin(a)));
+  }
+  return ring;
+}
+
+}  // namespace
+
+TEST_CASE("relations: piece.overhang and point-in-layer answer as before the grid's shortcuts") {
+  // Layers below of a few hundred edges (holes, separate parts), walls of the layer above shifted
+  // off them by up to 2 mm, grids of several pitches (the walk to a cell no edge passes through
+  // goes right or left): every fraction is the reference's, to the bit.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0, 1);
+  int pieces = 0, partial = 0, points = 0;
+  for (int t = 0; t < 40; ++t) {
+    geo::Rings below{wobbly(rng, 0, 0, 20 + 10 * u(rng), 1.5, 200 + int(300 * u(rng)))};
+    if (t % 2 == 0) {
+      geo::Ring hole = wobbly(rng, 3 * u(rng), 3 * u(rng), 6, 1, 80);
+      std::reverse(hole.begin(), hole.end());
+      below.push_back(hole);
+    }
+    if (t % 3 == 0) below.push_back(wobbly(rng, 45, 0, 8, 1, 60));
+    const RefEdges ref(below);
+    const double dx = 2 * u(rng) - 1, dy = 2 * u(rng) - 1;
+    geo::Rings above = below;
+    for (auto& r : above)
+      for (auto& p : r) p.X += geo::to_units(dx), p.Y += geo::to_units(dy);
+    for (geo::coord_t cell : {geo::coord_t(0), geo::to_units(0.7), geo::to_units(3.0)}) {
+      const EdgeGrid grid(below, cell);
+      for (const geo::Ring& wall : offset(above, -0.225)) {
+        geo::Ring path = wall;
+        path.push_back(wall.front());
+        const auto got = overhang_fractions(path, 0.45, grid);
+        const auto want = ref.overhang_fractions(path, 0.45);
+        REQUIRE(got.size() == want.size());
+        for (size_t i = 0; i < got.size(); ++i) {
+          CHECK(got[i] == want[i]);
+          ++pieces;
+          if (want[i] > 0 && want[i] < 1) ++partial;
+        }
+      }
+      for (int k = 0; k < 300; ++k) {
+        const geo::Point p = geo::to_point(-35 + 90 * u(rng), -35 + 70 * u(rng));
+        CHECK(grid.inside(p) == ref.inside(p));
+        ++points;
+      }
+    }
+  }
+  CHECK(partial > pieces / 20);  // the walls do straddle the layer below's border
+  CHECK(points == 40 * 3 * 300);
+}
+
+TEST_CASE("relations: EdgeGrid::box_clear: no edge meets the box, also edges passing its corners") {
+  // A triangle (0,0) (10,0) (0,10): its long edge runs along x + y = 10.
+  const geo::Rings tri{{geo::to_point(0, 0), geo::to_point(10, 0), geo::to_point(0, 10)}};
+  for (geo::coord_t cell : {geo::coord_t(0), geo::to_units(0.3), geo::to_units(20.0)}) {
+    const EdgeGrid g(tri, cell);
+    auto box = [&](double x0, double y0, double x1, double y1) {
+      return g.box_clear(geo::to_units(x0), geo::to_units(y0), geo::to_units(x1), geo::to_units(y1));
+    };
+    CHECK(box(1, 1, 3, 3));        // inside
+    CHECK(box(6, 6, 8, 8));        // outside, its corner (6, 6) beyond the long edge: the boxes' overlap is not a meeting
+    CHECK(box(4.9, 5.2, 6, 6));    // its corner a tenth of a millimetre off the long edge
+    CHECK_FALSE(box(4, 4, 6, 6));  // the long edge crosses it, no vertex inside
+    CHECK_FALSE(box(5, 5, 6, 6));  // touches it at a corner
+    CHECK_FALSE(box(-1, -1, 1, 1));  // holds a vertex
+    CHECK(box(20, 20, 30, 30));    // clear of the grid
+  }
+}
+
+TEST_CASE("relations: EdgeGrid::along answers as testing every edge does, near edges and off them") {
+  // Segments laid along a layer's edges, a little off them, past their ends, and across them:
+  // the grid (which passes by edges far from the segment's midpoint in four comparisons) says
+  // what the definition over every edge says.
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  const geo::Rings rings{wobbly(rng, 0, 0, 20, 2, 300)};
+  const RefEdges ref(rings);
+  const geo::coord_t tol = geo::to_units(0.01);
+  auto along_ref = [&](const geo::Point& a, const geo::Point& b) {
+    const geo::Point m((a.X + b.X) / 2, (a.Y + b.Y) / 2);
+    const double t2 = double(tol) * double(tol);
+    for (const auto& [ea, eb] : ref.edges) {
+      const double ex = double(eb.X - ea.X), ey = double(eb.Y - ea.Y), len2 = ex * ex + ey * ey;
+      auto d2 = [&](const geo::Point& p) {
+        const double cr = ex * double(p.Y - ea.Y) - ey * double(p.X - ea.X);
+        return cr * cr / len2;
+      };
+      if (d2(a) > t2 || d2(b) > t2) continue;
+      const double t = (ex * double(m.X - ea.X) + ey * double(m.Y - ea.Y)) / len2, slack = double(tol) / std::sqrt(len2);
+      if (t >= -slack && t <= 1 + slack) return true;
+    }
+    return false;
+  };
+  int yes = 0, no = 0;
+  for (geo::coord_t cell : {geo::coord_t(0), geo::to_units(1.0)}) {
+    const EdgeGrid g(rings, cell);
+    for (int k = 0; k < 3000; ++k) {
+      const auto& [ea, eb] = ref.edges[static_cast<size_t>(u(rng) * double(ref.edges.size())) % ref.edges.size()];
+      const double ex = double(eb.X - ea.X), ey = double(eb.Y - ea.Y), len = std::hypot(ex, ey);
+      const double nx = -ey / len, ny = ex / len;
+      auto at = [&](double s, double off) {  // s along the edge (0..1), off across it (units)
+        return geo::Point(std::llround(double(ea.X) + ex * s + nx * off), std::llround(double(ea.Y) + ey * s + ny * off));
+      };
+      const double off = (u(rng) * 3 - 1.5) * double(tol);
+      const double s0 = u(rng) * 1.4 - 0.2, s1 = s0 + (u(rng) - 0.5) * 0.8;
+      const geo::Point a = at(s0, off), b = k % 5 == 0 ? at(s1, off + (u(rng) - 0.5) * 1e6) : at(s1, off * (0.5 + u(rng)));
+      const bool want = along_ref(a, b);
+      CHECK(g.along(a, b, tol) == want);
+      (want ? yes : no) += 1;
+    }
+  }
+  CHECK(yes > 1000);
+  CHECK(no > 1000);
 }
