@@ -436,7 +436,8 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
     // The bridge: its lines' centres stay half an outer bead inside the outline, where they end
     // on it; where the region meets the walls and the fill kept on the layer below, they stop
     // half a spacing short (an artificial border).
-    const geo::Rings inside = toolpath::offset(ip.shape, -0.5 * spec.widths.front());
+    const geo::Rings inside =
+        toolpath::offset(ip.wall_outline.empty() ? ip.shape : ip.wall_outline, -0.5 * spec.widths.front());
     FillRegion region{PathKind::Bridge, toolpath::intersection(over.bridge, inside)};
     if (!region.rings.empty()) {
       const EdgeGrid outline(inside);

@@ -174,7 +174,8 @@ Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec, 
     // count follows the width; sparse fill would leave such a strip nearly empty).
     out.fill_region = offset_open(difference(inside, blocked), 0, (variable ? 1.0 : 0.5) * fs);
   }
-  out.beads = gap_beads(island, by_depth, spec.widths, out.fill_region, spec);
+  // The gaps reach the outline the outer loop follows (a thin part's beads fill it as it is).
+  out.beads = gap_beads(wall_outline ? *wall_outline : island, by_depth, spec.widths, out.fill_region, spec);
   return out;
 }
 
