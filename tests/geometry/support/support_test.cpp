@@ -185,14 +185,6 @@ void check_same(const ProjectInput& in) {
   CHECK(got.blocked_mm2 == Approx(want.blocked_mm2).epsilon(1e-6));
 }
 
-geo::Ring circle(double cx, double cy, double r, int n = 90) {
-  geo::Ring out;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
-    out.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -209,14 +201,14 @@ TEST_CASE("support: the columns' loop gives the regions of the plain one (union,
   }
   SUBCASE("round cap on a round stem, two contacts on different layers, a bottom gap") {
     // A 3 mm stem (layers 0..9), a 10 mm disc (10..12), a 16 mm ring round a 6 mm hole (15..17).
-    auto layers = test::stack(18, 0.2, geo::Polygon{circle(0, 0, 1.5), {}});
-    for (size_t k = 10; k < 13; ++k) layers[k].islands[0].shape.outer = circle(0, 0, 5);
-    for (size_t k = 13; k < 15; ++k) layers[k].islands[0].shape.outer = circle(0, 0, 1.5);
-    for (size_t k = 15; k < 18; ++k) layers[k].islands[0].shape = geo::Polygon{circle(0.3, 0.1, 8), {circle(0.3, 0.1, 3, 60)}};
+    auto layers = test::stack(18, 0.2, geo::Polygon{test::circle(0, 0, 1.5, 90), {}});
+    for (size_t k = 10; k < 13; ++k) layers[k].islands[0].shape.outer = test::circle(0, 0, 5, 90);
+    for (size_t k = 13; k < 15; ++k) layers[k].islands[0].shape.outer = test::circle(0, 0, 1.5, 90);
+    for (size_t k = 15; k < 18; ++k) layers[k].islands[0].shape = geo::Polygon{test::circle(0.3, 0.1, 8, 90), {test::circle(0.3, 0.1, 3, 60)}};
     ProjectInput in = test::project_input(layers);
-    in.contacts[8].push_back({toolpath::difference({circle(0, 0, 5)}, toolpath::offset({circle(0, 0, 1.5)}, 0.2)), 2, false});
+    in.contacts[8].push_back({toolpath::difference({test::circle(0, 0, 5, 90)}, toolpath::offset({test::circle(0, 0, 1.5, 90)}, 0.2)), 2, false});
     in.contacts[13].push_back(
-        {toolpath::difference(toolpath::difference({circle(0.3, 0.1, 8)}, {circle(0.3, 0.1, 3, 60)}), {circle(0, 0, 1.7)}), 3,
+        {toolpath::difference(toolpath::difference({test::circle(0.3, 0.1, 8, 90)}, {test::circle(0.3, 0.1, 3, 60)}), {test::circle(0, 0, 1.7, 90)}), 3,
          false});
     in.bottom_gap_layers = 1;
     in.bed = bed_region(false, -100, -100, 100, 100, geo::Point(0, 0));

@@ -1,6 +1,9 @@
 // Small shapes for the toolpath tests, in model units (1 nm).
 #pragma once
 
+#include <cmath>
+#include <cstdint>
+
 #include "geometry/core/geom.h"
 #include "geometry/core/layer.h"
 
@@ -11,6 +14,25 @@ inline geo::Ring rect(double x0, double y0, double x1, double y1, bool ccw = tru
   if (!ccw) ClipperLib::ReversePath(r);
   return r;
 }
+
+// A circle of `n` vertices, counter-clockwise.
+inline geo::Ring circle(double cx, double cy, double r, int n = 96) {
+  geo::Ring c;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    c.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  return c;
+}
+
+// A small linear congruential generator: the same numbers on every machine, in [0, 1).
+struct Lcg {
+  uint32_t seed;
+  double operator()() {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) / double(1 << 24);
+  }
+};
 
 // A layer stack of identical islands (outer + holes) from z = 0, layer height h.
 inline std::vector<geo::Layer> stack(int count, double h, const geo::Polygon& shape) {

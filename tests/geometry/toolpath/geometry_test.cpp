@@ -239,11 +239,7 @@ TEST_CASE("clip: offsets agree with Clipper's on curved, thin and holed shapes")
   // what differs is arcs within the tolerance, so the difference opened by 20 µm is empty. Shapes
   // from wide blobs to walls and necks thinner than twice the offset (where a careless join leaves
   // spurious loops), every offset both ways.
-  uint32_t seed = 12345;
-  auto rnd = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) / double(1 << 24);
-  };
+  test::Lcg rnd{12345};
   int compared = 0;
   for (int shape = 0; shape < 40; ++shape) {
     geo::Rings region;
@@ -276,11 +272,7 @@ TEST_CASE("clip: offsets agree with Clipper's on polygons with corners: stars, c
   // offset() gives most curves back as built (trimmed where moved edges cross, no union): sharp
   // and right-angled corners, short edges between long ones, teeth narrower than the offset,
   // holes that grow into their outer, random self-touching polygons united first.
-  uint32_t seed = 777;
-  auto rnd = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) / double(1 << 24);
-  };
+  test::Lcg rnd{777};
   auto pt = [](double x, double y) { return geo::Point(geo::to_units(x), geo::to_units(y)); };
   std::vector<geo::Rings> shapes;
   for (int k = 0; k < 12; ++k) {  // stars: 5..16 points, sharp to blunt
@@ -411,11 +403,7 @@ TEST_CASE("clip: a finely tessellated curve offset where it opens keeps one vert
 
 TEST_CASE("edge grid: inside and inside_fraction agree with a plain even-odd count everywhere, empty cells too") {
   // Blobs with holes: most grid cells hold no edge (answered from the cell), the rest are cast.
-  uint32_t seed = 777;
-  auto rnd = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) / double(1 << 24);
-  };
+  test::Lcg rnd{777};
   auto even_odd = [](const geo::Rings& rings, double x, double y) {
     bool in = false;
     for (const auto& r : rings)
@@ -553,11 +541,7 @@ TEST_CASE("clip: buffer_loops is the area within a distance of each loop, as Cli
   // Loops from round to wavy, clockwise ones (the walls round holes) and loops with necks
   // narrower than twice the distance (where the inner side vanishes in part); the band's
   // non-zero union against ClipperOffset's closed lines, which differ by arcs within tolerance.
-  uint32_t seed = 777;
-  auto rnd = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) / double(1 << 24);
-  };
+  test::Lcg rnd{777};
   int compared = 0;
   for (int shape = 0; shape < 30; ++shape) {
     const double r = 0.3 + 6 * rnd();

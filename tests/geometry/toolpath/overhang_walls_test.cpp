@@ -125,15 +125,6 @@ TEST_CASE("overhang walls: a loop cut by a region comes out as one piece around 
 
 namespace {
 
-// A circle of `n` vertices, counter-clockwise.
-geo::Ring circle(double cx, double cy, double r, int n = 96) {
-  geo::Ring c;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
-    c.push_back(geo::to_point(cx + r * std::cos(a), cy + r * std::sin(a)));
-  }
-  return c;
-}
 
 // What split_overhang_walls asked before the early-out: its difference shrunk by r, not empty.
 bool holds_disc(const geo::Rings& region, const geo::Rings& below, double r) {
@@ -146,9 +137,9 @@ TEST_CASE("overhang walls: the early-out rejects crescents and strips narrower t
   const double r = 0.5 * toolpath::kMinAirAcrossMm;
   // A curved layer over the one below shifted 1.5 mm: a crescent 1.5 mm across at most. A disc
   // of radius 1 does not fit; the early-out says so, and the boolean agrees.
-  const geo::Rings island{circle(0, 0, 10)};
-  CHECK_FALSE(holds_disc(island, {circle(1.5, 0, 10)}, r));
-  CHECK_FALSE(toolpath::may_hold_disc(island, {circle(1.5, 0, 10)}, r));
+  const geo::Rings island{test::circle(0, 0, 10)};
+  CHECK_FALSE(holds_disc(island, {test::circle(1.5, 0, 10)}, r));
+  CHECK_FALSE(toolpath::may_hold_disc(island, {test::circle(1.5, 0, 10)}, r));
   // Strips along y 1.5 and 1.9 mm wide (the rows cross them: exact in x), along x 1.25 mm wide
   // (found from the rows a quarter of the radius apart: up to 2 (r − margin − pitch − slot) =
   // 1.34 mm sure to be rejected), and along a diagonal 1.8 mm wide.
@@ -165,10 +156,10 @@ TEST_CASE("overhang walls: the early-out rejects crescents and strips narrower t
   CHECK_FALSE(toolpath::may_hold_disc({}, {rect(0, 0, 10, 10)}, r));
   // Shifted 2.5 mm, the crescent holds a disc of radius 1.25; a strip 2.1 mm wide; the island over
   // a hole 3 mm across in the layer below; over nothing: the early-out lets each through.
-  CHECK(holds_disc(island, {circle(2.5, 0, 10)}, r));
-  CHECK(toolpath::may_hold_disc(island, {circle(2.5, 0, 10)}, r));
+  CHECK(holds_disc(island, {test::circle(2.5, 0, 10)}, r));
+  CHECK(toolpath::may_hold_disc(island, {test::circle(2.5, 0, 10)}, r));
   CHECK(toolpath::may_hold_disc({rect(0, 0, 10, 10)}, {rect(2.1, -1, 11, 11)}, r));
-  geo::Ring hole = circle(10, 10, 1.5);
+  geo::Ring hole = test::circle(10, 10, 1.5);
   std::reverse(hole.begin(), hole.end());
   const geo::Rings holed{rect(0, 0, 20, 20), hole};
   CHECK(toolpath::may_hold_disc({rect(0, 0, 20, 20)}, holed, r));
@@ -188,7 +179,7 @@ TEST_CASE("overhang walls: the early-out never rejects what the boolean and the 
   for (int t = 0; t < 300; ++t) {
     auto blob = [&](double dx, double dy) {
       geo::Rings b;
-      for (int k = 0; k < 3; ++k) b.push_back(circle(dx + 8 * u(rng), dy + 8 * u(rng), 2 + 6 * u(rng), 24 + int(60 * u(rng))));
+      for (int k = 0; k < 3; ++k) b.push_back(test::circle(dx + 8 * u(rng), dy + 8 * u(rng), 2 + 6 * u(rng), 24 + int(60 * u(rng))));
       return toolpath::union_of(b, {});
     };
     const geo::Rings below = blob(0, 0);
