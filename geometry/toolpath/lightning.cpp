@@ -203,10 +203,17 @@ struct LayerGround {
 // The cost of joining a new leaf or a root that left the border to node id at distance d,
 // against the border's (its distance): as PrusaSlicer's lightning (Node::getWeightedDistance),
 // a node with one to three edges counts kBoost radii nearer, so that leaves and roots join a
-// tree a little further away rather than the walls, and trees grow long and branch. (Nodes are
-// looked for up to a radius beyond the border's distance: PrusaSlicer looks in the cells of its
-// 4 mm grid round the border's distance.)
+// tree a little further away rather than the walls, and trees grow long and branch.
 constexpr double kBoost = 4;
+// How far beyond the border's distance nodes are looked for: as far as the bonus reaches
+// (kBoost radii), at most kReachCap. PrusaSlicer looks in the cells of its 4 mm node grid round
+// the border's distance, 0 to 4 mm beyond it; 2.5 mm gives its plastic at 20 % on the bench's
+// models (bench/bench_infill.sh). The reach must not shrink to a radius: at high densities (a
+// radius of 0.5 mm at 95 %) the bonus then never counted, new leaves near the walls started
+// trees of their own, short and pruned away within a few layers, and the infill's plastic fell
+// above 65 % (tests/geometry/toolpath/lightning_test.cpp, "a dome's branch length").
+constexpr double kReachCap = 2.5 * geo::kUnitsPerMm;
+double reach(double radius) { return std::min(kBoost * radius, kReachCap); }
 double join_cost(const Forest& f, const std::vector<int>& nkids, int id, double d, double radius) {
   const auto k = static_cast<size_t>(id);
   const int valence = (f[k].parent >= 0 ? 1 : 0) + nkids[k];
@@ -234,7 +241,7 @@ void reground(Forest& f, const LayerGround& L) {
       to = nodes.best(
           f, p, db, [&](int id, double d) { return join_cost(f, nkids, id, d, L.radius); },
           [&](int id) { return !under(f, id, self) && !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); },
-          kBoost * L.radius, db + L.radius);
+          kBoost * L.radius, db + reach(L.radius));
     }
     if (to < 0) {
       to = add_root(f, b, p, db);
@@ -309,9 +316,10 @@ uint32_t mix(uint64_t v) {
 // the tree node or the border of least join_cost (the border's: its distance).
 void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
   if (need.empty()) return;
-  // A sixth of the radius (PrusaSlicer's distance field's cells), at least 0.2 mm: at high
-  // densities a finer grid only costs time.
-  Lattice lat(need, std::max(L.radius / 6, 0.2 * geo::kUnitsPerMm));
+  // A sixth of the radius (PrusaSlicer's distance field's cells) at every density: a floor
+  // (0.2 mm) sampled the tops of high densities coarser than the radius they are held at, and
+  // laid fewer leaves.
+  Lattice lat(need, L.radius / 6);
   if (lat.pts.empty()) return;
   struct Todo {
     size_t k;
@@ -345,11 +353,11 @@ void grow(Forest& f, const geo::Rings& need, const LayerGround& L) {
       lat.held[t.k] = 1;
       continue;
     }
-    // Nodes up to a radius beyond the border's distance.
+    // Nodes up to reach() beyond the border's distance.
     int to = nodes.best(
         f, p, t.db, [&](int id, double d) { return join_cost(f, nkids, id, d, L.radius); },
         [&](int id) { return !L.grid.crosses(to_pt(p), to_pt(f[static_cast<size_t>(id)].p)); }, kBoost * L.radius,
-        t.db + L.radius);
+        t.db + reach(L.radius));
     if (to < 0) {
       to = add_root(f, t.b, p, t.db);
       nkids.push_back(0);

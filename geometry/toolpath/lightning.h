@@ -11,14 +11,15 @@
 //               ("straighten"), nodes outside outline(i) and edges that leave it removed;
 //   regrounded  a tree whose root is no longer on the border is joined to a node of another
 //               tree (merging them) or to the nearest point of the border, by the cost below;
-//   grown       points of need(i) on a grid of radius/6 (0.2 mm at least), nearest the border
-//               first, each not within `radius_mm` of a leaf yet becomes one (PrusaSlicer's
-//               lightning: a leaf holds the points round it, its branch none): joined to the
-//               tree node or the border of least cost, the border's its distance, a node's its
-//               distance less 4 radii when it has one to three edges (so that leaves join
-//               trees rather than the walls and trees grow long), nodes looked for up to a
-//               radius beyond the border's distance; joined to the border, it is a new tree
-//               anchored at the walls.
+//   grown       points of need(i) on a grid of radius/6, nearest the border first, each not
+//               within `radius_mm` of a leaf yet becomes one (PrusaSlicer's lightning: a leaf
+//               holds the points round it, its branch none): joined to the tree node or the
+//               border of least cost, the border's its distance, a node's its distance less 4
+//               radii when it has one to three edges (so that leaves join trees rather than
+//               the walls and trees grow long), nodes looked for up to 4 radii (2.5 mm at most)
+//               beyond the border's distance; joined to the border, it is a new tree anchored
+//               at the walls. So a denser infill has more leaves on about as many trees, and
+//               more plastic.
 // A layer's branches are its forest's edges as open polylines: each tree walked from its root,
 // a branch continuing its parent's polyline, every further one starting its own. The slicer clips
 // them to the island's sparse region and joins them along its border as the other patterns

@@ -259,3 +259,71 @@ TEST_CASE("lightning: branches clipped to a region become joined fill paths") {
   CHECK(l > 0.5 * length_mm(trees[56]));
   CHECK(clip_fill_lines({}, fill_shape(region, geo::EdgeKind::Real), ps).empty());
 }
+
+namespace {
+
+// A dome: a hemisphere of radius `r` mm on the bed, layers of kH, each a 96-gon. Every layer's
+// edge is a top (the layer above is smaller), so every layer grows leaves near its walls, and
+// the trees carried down keep the ones from above: the rounded tops of the bench's sphere and
+// bunny.
+std::vector<geo::Layer> dome(double r) {
+  const int n = static_cast<int>(r / kH);
+  std::vector<geo::Layer> layers = test::stack(n, kH, geo::Polygon{test::rect(0, 0, 1, 1), {}});
+  for (int i = 0; i < n; ++i) {
+    const double z = (i + 0.5) * kH, rr = std::sqrt(r * r - z * z);
+    geo::Ring ring;
+    for (int k = 0; k < 96; ++k)
+      ring.push_back(geo::to_point(r + rr * std::cos(k * M_PI / 48), r + rr * std::sin(k * M_PI / 48)));
+    layers[static_cast<size_t>(i)].islands[0].shape = geo::Polygon{ring, {}};
+  }
+  return layers;
+}
+
+double total_mm(const std::vector<geo::Rings>& trees) {
+  double l = 0;
+  for (const auto& t : trees) l += length_mm(t);
+  return l;
+}
+
+}  // namespace
+
+// A denser lightning is more plastic: the total branch length over a dome's layers grows with
+// the density all the way to 95 % (it used to peak near 65 % and fall, the bunny's infill with
+// it: at high densities a leaf found the tree nodes only a radius beyond the border, so the
+// join bonus of 4 radii never counted and the trees stayed short and died within a few layers).
+TEST_CASE("lightning: a dome's branch length grows with the density up to 95 %") {
+  const auto layers = dome(15);
+  double last = 0;
+  for (double density : {0.2, 0.35, 0.5, 0.65, 0.8, 0.95}) {
+    CAPTURE(density);
+    const double l = total_mm(lightning_trees(layers, spec_at(density)));
+    CAPTURE(l);
+    CAPTURE(last);
+    CHECK(l > 1.02 * last);
+    last = l;
+  }
+}
+
+// The join bonus at every density: a leaf joins a tree node up to 4 radii further than the
+// border (PrusaSlicer's valence boost), so under a large top the number of trees standing on
+// the walls hardly changes with the density: more leaves, on the same trees (with nodes looked
+// for only a radius beyond the border, the slab's top had 31 trees at 20 %, 67 at 50 % and 106
+// at 95 %: the new leaves near the walls started trees of their own, short and soon pruned).
+TEST_CASE("lightning: leaves join trees rather than the walls at high densities too") {
+  const auto layers = slab_and_tower();
+  size_t at20 = 0;
+  for (double density : {0.2, 0.5, 0.8, 0.95}) {
+    CAPTURE(density);
+    const auto trees = lightning_trees(layers, spec_at(density));
+    size_t roots = 0;  // polylines starting on the slab's sparse border, 0.9 mm inside its sides
+    for (const auto& line : trees[6]) {
+      const double x = geo::to_mm(line[0].X), y = geo::to_mm(line[0].Y);
+      if (std::min({x - 0.9, 39.1 - x, y - 0.9, 39.1 - y}) < 0.01) ++roots;
+    }
+    CAPTURE(roots);
+    CAPTURE(trees[6].size());
+    if (at20 == 0) at20 = roots;
+    CHECK(roots > 0);
+    CHECK(roots < 1.5 * static_cast<double>(at20));
+  }
+}
