@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <mutex>
+#include <stdexcept>
 
 #include "geometry/fillangle/call_watch.h"
 #endif
@@ -183,7 +184,13 @@ bool FillAngleScript::available() { return true; }
 Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path, double timeout_s) {
   auto source = read_script(path);
   if (!source) return source.error();
-  ensure_interpreter();
+  try {
+    ensure_interpreter();
+  } catch (const std::runtime_error& e) {  // pybind11's: CPython's start failed (std::bad_alloc passes)
+    return Error{path, fmt::format("cannot start Python for the script: {} (too little memory for it, see "
+                                   "--max-memory and ulimit -v, or a broken Python installation)",
+                                   e.what())};
+  }
   py::gil_scoped_acquire gil;
   auto impl = std::make_unique<Impl>();
   impl->watch = std::make_unique<CallWatch>(timeout_s);
