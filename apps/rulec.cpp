@@ -359,6 +359,7 @@ static int run(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
+  tranche::load_unwinder();  // before memory runs short: out of memory must end in our message, not an abort
   std::signal(SIGPIPE, SIG_IGN);  // a reader that goes away is a write error with a message
   try {
     return run(argc, argv);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <new>
+#include <system_error>
 
 #include "base/input_file.h"
 #include "base/memory.h"
@@ -133,6 +134,11 @@ Result<pipeline::SliceSummary> slice(const pipeline::SliceOptions& options, cons
     return slice_run(options, plate, report);
   } catch (const std::bad_alloc&) {  // compiling the rules, loading and placing the models
     return out_of_memory("", "loading the models and rules");
+  } catch (const std::system_error& e) {
+    // A thread of our own (the script's watchdog, a 3MF read-ahead) that cannot start: with the
+    // address space used up there is no room for its stack.
+    if (e.code() != std::errc::resource_unavailable_try_again) throw;
+    return out_of_memory("", "starting a thread");
   }
 }
 

@@ -55,6 +55,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tranche::load_unwinder();  // before memory runs short: out of memory must end in our message, not an abort
   std::signal(SIGPIPE, SIG_IGN);  // a reader that goes away is a write error with a message, not a kill
   // Anything that escapes the library's own error handling still ends in a message and exit 1,
   // never an abort; the outputs' temporary files are removed by their destructors.

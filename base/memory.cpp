@@ -6,6 +6,11 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <mutex>
+
+#if defined(__GLIBC__)
+#include <execinfo.h>
+#endif
 
 namespace tranche {
 namespace {
@@ -42,5 +47,22 @@ Status set_memory_limit(uint64_t mb) {
 }
 
 uint64_t memory_limit_mb() { return g_limit_mb.load(); }
+
+bool load_unwinder() {
+#if defined(__GLIBC__)
+  // backtrace() loads the unwinder (glibc's documented way to have it loaded ahead of time); it
+  // returns no frame when it could not. Then the path that failed, once, so that glibc's
+  // forwarders in pthread_once's frame are bound too (older glibc binds those separately). A throw
+  // without an unwinder would abort, hence only after backtrace() succeeded.
+  void* frame[1];
+  if (::backtrace(frame, 1) < 1) return false;
+  std::once_flag once;
+  try {
+    std::call_once(once, [] { throw 0; });
+  } catch (int) {
+  }
+#endif
+  return true;
+}
 
 }  // namespace tranche

@@ -23,4 +23,14 @@ Status set_memory_limit(uint64_t mb);
 // The limit set_memory_limit() set, in MB (0: none).
 uint64_t memory_limit_mb();
 
+// Loads the unwinder (libgcc_s) into glibc's reach now; the tools call it first thing in main().
+// glibc dlopen()s it the first time it needs it itself: for an exception that passes through one
+// of its own frames (std::call_once runs its function inside pthread_once), backtrace(),
+// pthread_cancel. That dlopen takes a little memory; when an allocation has just failed there is
+// none, and glibc then aborts ("libgcc_s.so.1 must be installed for unwinding to work") instead
+// of letting the std::bad_alloc reach the handler that prints out_of_memory(). Loaded at start,
+// while there is memory, it is never needed again. Returns false when the unwinder could not be
+// loaded (then nothing more can be done).
+bool load_unwinder();
+
 }  // namespace tranche

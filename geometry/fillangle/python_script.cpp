@@ -9,9 +9,19 @@
 #include <fmt/format.h>
 #include <pybind11/embed.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <stdexcept>
+#include <system_error>
+#include <thread>
 
+#include "base/temp_files.h"
 #include "geometry/fillangle/call_watch.h"
 #endif
 
@@ -33,13 +43,55 @@ namespace py = pybind11;
 
 namespace {
 
+// A deadline on CPython's start. Out of memory, the start can spin for good inside its import
+// machinery (seen under ulimit -v 30 MB: a run that never ended), and a sitecustomize module
+// that never returns holds it as well. Past the deadline the run ends with `message`, as for a
+// call that cannot be interrupted (CallWatch); nothing was written yet.
+class StartDeadline {
+ public:
+  StartDeadline(double seconds, std::string message)
+      : message_(std::move(message)), thread_([this, seconds] {
+          std::unique_lock lock(mu_);
+          if (cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return done_; })) return;
+          std::fprintf(stderr, "error: %s\n", message_.c_str());
+          temp_files::unlink_all();
+          ::_exit(1);
+        }) {}
+  ~StartDeadline() {
+    {
+      std::lock_guard lock(mu_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  StartDeadline(const StartDeadline&) = delete;
+  StartDeadline& operator=(const StartDeadline&) = delete;
+
+ private:
+  std::string message_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::thread thread_;  // last: started once the rest is made
+};
+
+// The start's deadline: the script's timeout, but never under 10 s (a start takes ~0.05 s).
+constexpr double kMinStartDeadlineS = 10;
+
 // One interpreter per process, started on first use and never finalized (finalizing and
 // restarting CPython is unreliable). The GIL is released after start-up so that any thread can
-// take it for a call.
-void ensure_interpreter() {
+// take it for a call. A watchdog thread that cannot start throws std::system_error (out of memory).
+void ensure_interpreter(const std::string& path, double timeout_s) {
   static std::once_flag once;
-  std::call_once(once, [] {
+  std::call_once(once, [&] {
     if (Py_IsInitialized()) return;
+    const double deadline_s = std::max(timeout_s, kMinStartDeadlineS);
+    StartDeadline deadline(deadline_s,
+                           fmt::format("{}: Python did not start within {:g} s (too little memory for it, see "
+                                       "--max-memory and ulimit -v, or a sitecustomize module that does not "
+                                       "return); tranche stopped, nothing was written",
+                                       path, deadline_s));
     py::initialize_interpreter(/*init_signal_handlers=*/false, 0, nullptr, /*add_program_dir_to_path=*/false);
     PyEval_SaveThread();
   });
@@ -163,18 +215,26 @@ std::string stuck_message(const std::string& path, const std::string& what, doub
 struct FillAngleScript::Impl {
   py::object globals, fn, namespace_type;
   std::unique_ptr<CallWatch> watch;
+  // Never throws: it may run while an error is on its way out (out of memory included), and an
+  // exception out of it would end the process.
   ~Impl() {
-    py::gil_scoped_acquire gil;
-    // Flush what the script printed: the interpreter is never finalized, which would do it.
     try {
-      py::module_ sys = py::module_::import("sys");
-      sys.attr("stdout").attr("flush")();
-      sys.attr("stderr").attr("flush")();
-    } catch (const py::error_already_set&) {
+      py::gil_scoped_acquire gil;
+      // Flush what the script printed: the interpreter is never finalized, which would do it.
+      try {
+        py::module_ sys = py::module_::import("sys");
+        sys.attr("stdout").attr("flush")();
+        sys.attr("stderr").attr("flush")();
+      } catch (...) {
+      }
+      fn = py::object();
+      namespace_type = py::object();
+      globals = py::object();
+    } catch (...) {  // no GIL to be had: the objects are left to the interpreter
+      fn.release();
+      namespace_type.release();
+      globals.release();
     }
-    fn = py::object();
-    namespace_type = py::object();
-    globals = py::object();
   }
 };
 
@@ -183,7 +243,15 @@ bool FillAngleScript::available() { return true; }
 Result<std::unique_ptr<FillAngleScript>> FillAngleScript::load(const std::string& path, double timeout_s) {
   auto source = read_script(path);
   if (!source) return source.error();
-  ensure_interpreter();
+  try {
+    ensure_interpreter(path, timeout_s);
+  } catch (const std::system_error&) {  // the deadline's thread: out of memory, said by the callers
+    throw;
+  } catch (const std::runtime_error& e) {  // pybind11's: CPython's start failed (std::bad_alloc passes)
+    return Error{path, fmt::format("cannot start Python for the script: {} (too little memory for it, see "
+                                   "--max-memory and ulimit -v, or a broken Python installation)",
+                                   e.what())};
+  }
   py::gil_scoped_acquire gil;
   auto impl = std::make_unique<Impl>();
   impl->watch = std::make_unique<CallWatch>(timeout_s);

@@ -72,6 +72,17 @@ expect_error "--rules: a 300 MB file" "more than"
 truncate -s 20M big.py
 run 20 "$TRANCHE" slice m.stl --fill-angle-script big.py -o out.gcode -q
 expect_error "--fill-angle-script: a 20 MB file" "more than the 16 MiB"
+# A Python that cannot start (its standard library missing; too little memory does the same): the
+# script's error, not an internal one.
+printf 'def fill_angle(ctx):\n    return 0\n' >ok.py
+run 60 env PYTHONHOME="$T/no-python-here" "$TRANCHE" slice m.stl --fill-angle-script ok.py -o out.gcode -q
+if [[ $ERR == *"built without Python"* ]]; then
+  skip "--fill-angle-script: Python cannot start" "no Python in this build"
+else
+  expect_error "--fill-angle-script: Python cannot start" "ok.py: cannot start Python for the script" \
+    "or a broken Python installation"
+  check "... no internal error" test -z "$(grep -F 'internal error' <<<"$ERR")"
+fi
 
 # Inputs that are no files at all.
 mkdir dir.rules

@@ -76,6 +76,15 @@ else
   expect_error "a script stuck in time.sleep is ended" "could not be interrupted" "layer 0, island 0"
   check "... within 10 seconds" test $(($(date +%s) - start)) -le 10
   check "no G-code was written for a stopped script" test ! -e py.gcode
+  # A Python whose start never ends (a sitecustomize module that loops; out of memory, CPython's
+  # start can spin the same way): stopped at the start's deadline, 10 s at least.
+  mkdir spin && printf 'while True:\n    pass\n' >spin/sitecustomize.py
+  start=$(date +%s)
+  run 60 env PYTHONPATH="$T/spin" "$TRANCHE" slice m.stl --fill-angle-script loop.py --script-timeout 1 -o spin.gcode -q
+  expect_error "a Python start that never ends is stopped" "loop.py: Python did not start within 10 s" \
+    "nothing was written"
+  check "... within 20 seconds" test $(($(date +%s) - start)) -le 20
+  check "no G-code was written for a Python that did not start" test ! -e spin.gcode
 fi
 
 # --- killed while writing ---------------------------------------------------------------------
