@@ -671,7 +671,7 @@ TEST_CASE("clip: staircases and notched discs offset both ways agree with Clippe
     }
   }
   CHECK(compared == 192);
-  // 146 of the 192 with no union (57 when a segment starting at an arc could not be consumed).
+  // 146 of the 192 with no union (42 when a segment starting at a round join could not be consumed).
   CHECK(as_built >= 140);
   for (int k = 0; k < 8; ++k) {
     const double r = 0.5 + 2 * rnd();
