@@ -35,7 +35,9 @@ Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
 // `p` less each vertex that ends an edge shorter than 10 µm and lies within 1 µm of the chord
 // between its neighbours, between the chord's ends (no spike's tip goes), never two in a row (so
 // each is within 1 µm of the edge that replaces it, and the ring moves by less than 1 µm).
-geo::Ring without_short_edges(const geo::Ring& p) {
+// Not inlined: GCC 12, inlining it into raw_offset, takes its push_back for a free of a non-heap
+// pointer (-Wfree-nonheap-object, a false positive).
+[[gnu::noinline]] geo::Ring without_short_edges(const geo::Ring& p) {
   constexpr double kShort = 10000, kNear = 1000;  // nm
   auto len2 = [](const geo::Point& a, const geo::Point& b) {
     const double dx = double(b.X - a.X), dy = double(b.Y - a.Y);
@@ -84,8 +86,8 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, doubl
     if (p.empty() || q != p.back()) p.push_back(q);
   while (p.size() > 1 && p.front() == p.back()) p.pop_back();
   // For the trimmed curve, edges of a few µm go (without_short_edges): outlines sliced from meshes
-  // pair most of their vertices a few µm apart, and such an edge next to a round join cannot be
-  // trimmed. The curve with detours keeps every vertex (a sliver of no area must stay one).
+  // pair most of their vertices a few µm apart, each one more segment (and join) to trim, for no
+  // visible change. The curve with detours keeps every vertex (a sliver of no area must stay one).
   if (trim && p.size() > 3) {
     geo::Ring q = without_short_edges(p);
     if (q.size() >= 3) p.swap(q);
@@ -129,100 +131,161 @@ void raw_offset(const geo::Ring& ring, double delta, double steps_per_rad, doubl
       at(v, x, y);
     }
   };
-  // First the trimmed curve: where moved edges overlap, the point where they cross; a moved edge
-  // wholly behind that of a neighbour (a short edge of a tessellated curve, shorter than the
-  // overlap) is dropped and its neighbours are crossed instead, as the union would leave them.
-  // Edges stack up as they come; a consumed edge is the top one, whose only point is its start
-  // crossing. It gives up (the detours below then, for the union) where a consumed edge starts
-  // with a round join or the lines nearly turn back (more than 177°).
+  // First the trimmed curve. It is made of segments: the moved edges and the chords of the round
+  // joins, each a line with the part of it kept. Where two overlap (the curve would turn back
+  // across itself) it takes their crossing; a segment wholly behind its neighbours' crossing (a
+  // short edge of a tessellated curve, shorter than the overlap; an arc whose vertex a moved edge
+  // passes) is dropped and its neighbours are crossed instead, as the union would leave them; so
+  // is one that would follow a segment it does not start from, or turn back on it, where it lies
+  // wholly within |delta| of that segment's edge or vertex (none of it is on the offset).
+  // Segments stack up as they come; a consumed one is the top one, whose only point is its start.
+  // It gives up (the detours below then, for the union) where the bottom segment (the longest
+  // edge) would go, where a segment would follow one it does not start from by turning the way
+  // the offset opens, or where the lines nearly turn back (more than 177°).
   if (trim) {
-    struct Entry {
-      size_t edge;
-      double s, e;  // the part of the moved edge kept: from s to e along it (units)
-      bool round;   // it starts with a round join
-      size_t at;    // its points start at r[at]
+    struct Seg {
+      double ox, oy;     // its point at 0 along it
+      double nx, ny;     // its unit normal; its direction is (-ny, nx)
+      double s, e, lim;  // kept from s to e along it (units); it ends at lim
+      size_t at;         // its points start at r[at]
+      size_t src;        // the edge it is moved from, or the vertex its arc is round
+      bool chord;
     };
     size_t j0 = 0;  // the longest edge first: the last to be consumed
     for (size_t i = 1; i < n; ++i)
       if (nrm[i].len > nrm[j0].len) j0 = i;
-    auto origin = [&](size_t e, double& x, double& y) {
-      x = double(p[e].X) + nrm[e].x * delta;
-      y = double(p[e].Y) + nrm[e].y * delta;
+    auto edge = [&](size_t e) {
+      return Seg{double(p[e].X) + nrm[e].x * delta, double(p[e].Y) + nrm[e].y * delta, nrm[e].x, nrm[e].y, 0,
+                 nrm[e].len, nrm[e].len, 0, e, false};
     };
-    std::vector<Entry> st;
+    // Whether `x` lies wholly within |delta| of what `t` is made from (an edge, or the vertex of
+    // its arc): then none of it is on the offset, which lies |delta| from the ring.
+    auto covered = [&](const Seg& t, const Seg& x) {
+      const double reach = std::abs(delta) - 1, r2 = reach * reach;
+      auto inside = [&](double qx, double qy) {
+        const geo::Point& a = p[t.src];
+        double cx = double(a.X), cy = double(a.Y);
+        if (!t.chord) {
+          const geo::Point& b = p[(t.src + 1) % n];
+          const double ex = double(b.X) - cx, ey = double(b.Y) - cy;
+          const double u = std::clamp(((qx - cx) * ex + (qy - cy) * ey) / (ex * ex + ey * ey), 0.0, 1.0);
+          cx += u * ex, cy += u * ey;
+        }
+        return (qx - cx) * (qx - cx) + (qy - cy) * (qy - cy) < r2;
+      };
+      const double s0 = std::min(x.s, 0.0);
+      return inside(x.ox - x.ny * s0, x.oy + x.nx * s0) && inside(x.ox - x.ny * x.lim, x.oy + x.nx * x.lim);
+    };
+    auto emit = [&](double x, double y) {
+      r.emplace_back(static_cast<geo::coord_t>(std::llround(x)), static_cast<geo::coord_t>(std::llround(y)));
+    };
+    std::vector<Seg> st;
     st.reserve(64);
-    st.push_back({j0, -1e300, nrm[j0].len, false, 0});
-    bool ok = true;
-    for (size_t m = 1; m <= n && ok; ++m) {
-      const size_t b = (j0 + m) % n;
-      const Normal& nb = nrm[b];
-      const geo::Point& v = p[b];
+    st.push_back(edge(j0));
+    st[0].s = -1e300;
+    // Puts `x` on the stack after the segment before it, which ends where `x` starts (at (px, py),
+    // `x.s` along `x`) unless they overlap; `last`: `x` is the bottom segment, come round again.
+    // Where `x` overlaps, the segments it consumes (their crossing with it lies before their start)
+    // go, and it starts at its crossing with the first that stays; if that crossing lies past its
+    // end, `x` is wholly behind and goes itself instead (it consumes nothing), and the next one
+    // does not start where the top segment ends.
+    bool connected = true;  // the top segment is the one before the next
+    auto feed = [&](Seg x, double px, double py, bool last) {
+      size_t k = st.size() - 1;  // the top once those consumed go
       for (;;) {
-        Entry& top = st.back();
-        const size_t a = top.edge;
-        const Normal& na = nrm[a];
-        const bool adjacent = (a + 1) % n == b;
-        const double sin_a = std::clamp(na.x * nb.y - nb.x * na.y, -1.0, 1.0);
-        const double cos_a = na.x * nb.x + na.y * nb.y;
-        if (sin_a * delta < 0 && !(std::abs(sin_a * delta) < 1.0 && cos_a > 0)) {  // overlap: cross
-          if (cos_a < -0.999) {  // nearly back: the crossing is far and ill-conditioned
-            ok = false;
-            break;
+        Seg& t = st[k];
+        const double sin_a = std::clamp(t.nx * x.ny - x.nx * t.ny, -1.0, 1.0);
+        const double cos_a = t.nx * x.nx + t.ny * x.ny;
+        const bool straight = std::abs(sin_a * delta) < 1.0 && cos_a > 0;
+        if (sin_a * delta < 0 && !straight) {  // overlap: cross
+          if (cos_a < -0.999 && !last && (covered(t, x) || covered(st.back(), x))) {  // x wholly behind
+            connected = false;
+            return true;
           }
-          double ax, ay, bx, by;
-          origin(a, ax, ay);
-          origin(b, bx, by);
-          const double dax = -na.y, day = na.x, dbx = -nb.y, dby = nb.x;  // directions
-          const double den = dax * dby - day * dbx;
-          const double wx = bx - ax, wy = by - ay;
-          const double ta = (wx * dby - wy * dbx) / den, tb = (wx * day - wy * dax) / den;
-          if (ta < top.s) {  // a is consumed
-            if (st.size() == 1 || top.round) {
-              ok = false;
-              break;
-            }
-            r.resize(top.at);
-            st.pop_back();
+          if (cos_a < -0.999) return false;  // nearly back: the crossing is far and ill-conditioned
+          const double dtx = -t.ny, dty = t.nx, dxx = -x.ny, dxy = x.nx;  // directions
+          const double den = dtx * dxy - dty * dxx;
+          const double wx = x.ox - t.ox, wy = x.oy - t.oy;
+          const double ta = (wx * dxy - wy * dxx) / den, tb = (wx * dty - wy * dtx) / den;
+          if (ta < t.s) {  // t is consumed
+            if (k == 0) return false;
+            --k;
             continue;
           }
-          if (ta > na.len + 1.0) {  // crossing past a's end: only a consumed edge's would be
-            ok = false;
-            break;
+          if (ta > t.lim + 1.0) return false;  // crossing past t's end: only a consumed segment's would be
+          if (tb > x.lim && !last) {  // x wholly behind
+            connected = false;
+            return true;
           }
-          top.e = ta;
-          if (m == n) {  // back at the first edge
-            if (st.size() == 1 || tb > st[0].e) ok = false;
-          } else {
-            st.push_back({b, tb, nb.len, false, r.size()});
+          if (k + 1 < st.size()) {
+            r.resize(st[k + 1].at);
+            st.resize(k + 1);
           }
-          if (ok)
-            r.emplace_back(static_cast<geo::coord_t>(std::llround(ax + dax * ta)),
-                           static_cast<geo::coord_t>(std::llround(ay + day * ta)));
-          break;
+          t.e = ta;
+          x.s = tb;
+          px = t.ox + dtx * ta;
+          py = t.oy + dty * ta;
+        } else {  // straight on or opening: from where t ends
+          if ((k + 1 < st.size() || !connected) && !last && (covered(t, x) || covered(st.back(), x))) {
+            connected = false;  // x wholly behind
+            return true;
+          }
+          if (k + 1 < st.size() || !connected) return false;
+          t.e = t.lim;
         }
-        // Straight on or opening: a must end where its edge does.
-        if (!adjacent || top.s > na.len) {
-          ok = false;
-          break;
+        if (last && (st.size() == 1 || x.s > st[0].e)) return false;
+        if (!last) {
+          x.at = r.size();
+          st.push_back(x);
         }
-        top.e = na.len;
-        if (m == n) {
-          if (st.size() == 1 || 0 > st[0].e) ok = false;
-        } else {
-          st.push_back({b, 0, nb.len, !(std::abs(sin_a * delta) < 1.0 && cos_a > 0), r.size()});
+        connected = true;
+        emit(px, py);
+        return true;
+      }
+    };
+    bool ok = true;
+    for (size_t m = 1; m <= n && ok; ++m) {
+      const size_t b = (j0 + m) % n, a = (b + n - 1) % n;
+      const Normal &na = nrm[a], &nb = nrm[b];
+      const geo::Point& v = p[b];
+      const double vx = double(v.X), vy = double(v.Y);
+      const double sin_a = std::clamp(na.x * nb.y - nb.x * na.y, -1.0, 1.0);
+      const double cos_a = na.x * nb.x + na.y * nb.y;
+      Seg x = edge(b);
+      const bool last = m == n;
+      if (std::abs(sin_a * delta) < 1.0 && cos_a > 0) {  // straight on: a's end
+        ok = feed(x, vx + na.x * delta, vy + na.y * delta, last);
+      } else if (sin_a * delta < 0) {  // the moved edges overlap
+        ok = feed(x, 0, 0, last);
+      } else if (mitre(cos_a)) {  // both lines to their crossing
+        const double ext = sin_a * delta / (1 + cos_a), f = delta / (1 + cos_a);
+        if (connected) st.back().lim += ext;
+        x.s = -ext;
+        ok = feed(x, vx + (na.x + nb.x) * f, vy + (na.y + nb.y) * f, last);
+      } else {  // the arc's chords, then b
+        double qx = vx + na.x * delta, qy = vy + na.y * delta;
+        auto chord = [&](double x2, double y2) {
+          const double dx = x2 - qx, dy = y2 - qy, len = std::sqrt(dx * dx + dy * dy);
+          if (len > 0) {
+            const Seg c{qx, qy, dy / len, -dx / len, 0, len, len, 0, b, true};
+            if (!feed(c, qx, qy, false)) return false;
+          }
+          qx = x2, qy = y2;
+          return true;
+        };
+        if (cos_a < cos_one_step) {
+          const double turn = std::atan2(sin_a, cos_a);
+          const int steps = std::max(static_cast<int>(std::lround(steps_per_rad * std::abs(turn))), 1);
+          const double c = std::cos(turn / steps), s = std::sin(turn / steps);
+          double ux = na.x, uy = na.y;
+          for (int i = 1; i < steps && ok; ++i) {
+            const double u2 = ux * c - uy * s;
+            uy = ux * s + uy * c;
+            ux = u2;
+            ok = chord(vx + ux * delta, vy + uy * delta);
+          }
         }
-        if (!ok) break;
-        if (std::abs(sin_a * delta) < 1.0 && cos_a > 0) {
-          at(v, na.x, na.y);
-        } else if (mitre(cos_a)) {
-          const double f = 1 / (1 + cos_a);
-          at(v, (na.x + nb.x) * f, (na.y + nb.y) * f);
-        } else {
-          at(v, na.x, na.y);
-          arc(v, na, sin_a, cos_a);
-          at(v, nb.x, nb.y);
-        }
-        break;
+        ok = ok && chord(vx + nb.x * delta, vy + nb.y * delta) && feed(x, qx, qy, last);
       }
     }
     if (ok && r.size() >= 3)
@@ -417,7 +480,8 @@ bool as_is(Rings raw, Rings& out) {
   return false;
 }
 
-Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
+Rings offset_with(const Rings& region, double mm, double arc_tolerance, bool* as_built = nullptr) {
+  if (as_built) *as_built = false;
   Rings out;
   if (region.empty()) return out;
   const double delta = mm * geo::kUnitsPerMm;
@@ -455,7 +519,10 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance) {
         raw_offset(clean, delta, steps_per_rad, 0.2 * tol, raw, trim, trimmed);
         if (!trimmed) break;
       }
-      if (trim && trimmed && !raw.empty() && as_is(std::move(raw), out)) return out;  // raw is built again below
+      if (trim && trimmed && !raw.empty() && as_is(std::move(raw), out)) {  // raw is built again below
+        if (as_built) *as_built = true;
+        return out;
+      }
     }
   }
   if (raw.empty()) return out;
@@ -488,6 +555,9 @@ bool is_clean_region(const Rings& rings) {
 }
 
 Rings offset(const Rings& region, double mm) { return offset_with(region, mm, kArcTolerance); }
+Rings offset(const Rings& region, double mm, bool& as_built) {
+  return offset_with(region, mm, kArcTolerance, &as_built);
+}
 Rings offset_coarse(const Rings& region, double mm) { return offset_with(region, mm, 25000); }
 
 Rings offset_open(const Rings& region, double mm, double open_mm) {

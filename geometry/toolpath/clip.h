@@ -9,6 +9,9 @@ namespace tranche::toolpath {
 // Grows (mm > 0) or shrinks (mm < 0) closed regions with round joins: the exact Minkowski
 // sum/difference with a disc, up to the arc tolerance (5 µm).
 geo::Rings offset(const geo::Rings& region, double mm);
+// The same, and whether it is the offset curve as built, trimmed where it would cross itself,
+// with no union to clean it (for tests and measurements).
+geo::Rings offset(const geo::Rings& region, double mm, bool& as_built);
 // The same with arcs to 25 µm: for support, whose beads need no finer (and whose outlines carry
 // every vertex of the part's, grown by a gap).
 geo::Rings offset_coarse(const geo::Rings& region, double mm);
