@@ -65,29 +65,32 @@ sweep() {
   fi
 }
 
+# sweep_tool NAME STEP_KB COUNT PATTERN COMMAND...: `sweep` from the smallest cap the command's
+# program starts under (NAME is its name and verb), or a skip when it cannot start under 400 MB.
+sweep_tool() {
+  local name=$1 step=$2 count=$3 pattern=$4
+  shift 4
+  local start
+  start=$(smallest_cap "$1")
+  if [[ $start -eq 0 ]]; then
+    skip "${name%% *} under caps" "${name%% *} does not start under 400 MB of address space"
+  else
+    sweep "$name, ${start} KB and up" "$start" "$step" "$count" "$pattern" "$@"
+  fi
+}
+
 box m.stl 30 30 20
-start=$(smallest_cap "$TRANCHE")
-if [[ $start -eq 0 ]]; then
-  skip "tranche under caps" "tranche does not start under 400 MB of address space"
-else
-  # The preview is kept whole until the end, so the memory grows layer by layer: the caps end the
-  # run while loading, at the threads' start, in the layers or at the end.
-  sweep "tranche slice, ${start} KB and up" "$start" 5000 20 \
-    "error: (out of memory while|m.stl: not enough memory to load the model)" \
-    "$TRANCHE" slice m.stl -o m.gcode --export-preview m.html -q --set layer_height=0.1 --set infill_density=40%
-fi
+# The preview is kept whole until the end, so the memory grows layer by layer: the caps end the
+# run while loading, at the threads' start, in the layers or at the end.
+sweep_tool "tranche slice" 5000 20 "error: (out of memory while|m.stl: not enough memory to load the model)" \
+  "$TRANCHE" slice m.stl -o m.gcode --export-preview m.html -q --set layer_height=0.1 --set infill_density=40%
 
 python3 -c '
 for i in range(2000):
     print("rule \"r%d\" when layer.index == %d { speed = %d mm/s }" % (i, i, 20 + i % 50))' >big.rules
-start=$(smallest_cap "$RULEC")
-if [[ $start -eq 0 ]]; then
-  skip "rulec under caps" "rulec does not start under 400 MB of address space"
-else
-  # The parser's own diagnostic (E0004) names the std::bad_alloc.
-  sweep "rulec check, ${start} KB and up" "$start" 1500 16 \
-    "(out of memory while compiling|not enough memory to read the rules file|the parser failed: std::bad_alloc)" \
-    "$RULEC" check big.rules
-fi
+# The parser's own diagnostic (E0004) names the std::bad_alloc.
+sweep_tool "rulec check" 1500 16 \
+  "(out of memory while compiling|not enough memory to read the rules file|the parser failed: std::bad_alloc)" \
+  "$RULEC" check big.rules
 
 finish
