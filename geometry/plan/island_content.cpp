@@ -52,7 +52,7 @@ void measure_below(IslandPlan& ip, toolpath::Neighbours& nb) {
 
 void measure_island(IslandPlan& ip, const geo::Point& shift, toolpath::Neighbours& nb, const IslandNeeds& needs) {
   // Sizes as the outer wall follows the outline (at the print's resolution).
-  const geo::Rings& outline = ip.wall_outline.empty() ? ip.shape : ip.wall_outline;
+  const geo::Rings& outline = ip.outline();
   ip.area = toolpath::area_mm2(outline);
   ip.border_length = 0;
   ip.holes = 0;
@@ -356,8 +356,7 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
                   : toolpath::WallMode::Classic;
   spec.min_bead_width = P[PropId::MinBeadWidth];
   spec.max_bead_width = std::max(P[PropId::MaxBeadWidth], spec.min_bead_width);
-  toolpath::Perimeters per =
-      toolpath::make_perimeters(ip.shape, spec, ip.wall_outline.empty() ? nullptr : &ip.wall_outline);
+  toolpath::Perimeters per = toolpath::make_perimeters(ip.shape, spec, &ip.outline());
   // overhang_walls = bridge: where the wall band lies over air a bead wide or more, that part of
   // the island is a bridge (geometry/toolpath/overhang_walls.h); walls stay where they rest on
   // the layer below. Not on the first layer (the bed holds it), nor where support holds it up.
@@ -436,8 +435,7 @@ Status build_island(IslandPlan& ip, Nest& nest, toolpath::Neighbours& nb, double
     // The bridge: its lines' centres stay half an outer bead inside the outline, where they end
     // on it; where the region meets the walls and the fill kept on the layer below, they stop
     // half a spacing short (an artificial border).
-    const geo::Rings inside =
-        toolpath::offset(ip.wall_outline.empty() ? ip.shape : ip.wall_outline, -0.5 * spec.widths.front());
+    const geo::Rings inside = toolpath::offset(ip.outline(), -0.5 * spec.widths.front());
     FillRegion region{PathKind::Bridge, toolpath::intersection(over.bridge, inside)};
     if (!region.rings.empty()) {
       const EdgeGrid outline(inside);

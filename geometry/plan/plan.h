@@ -111,6 +111,8 @@ struct IslandPlan {
   // The same outline and holes at the print's `resolution`, which the outer walls follow; empty
   // when that is `shape` (resolution as coarse as the inner one, a replacer's offset).
   geo::Rings wall_outline;
+  // What the outer walls follow: wall_outline, or the shape when that is empty.
+  const geo::Rings& outline() const { return wall_outline.empty() ? shape : wall_outline; }
   // island.* fields, in the units of fields.def (mm, mm², ratio)
   double area = 0, border_length = 0;
   double supported = 0, covered = 0;                          // computed only when a rule reads them

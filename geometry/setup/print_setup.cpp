@@ -52,16 +52,17 @@ std::vector<geo::Layer> simplify_layers(std::span<const geo::Layer> layers, doub
       geo::Island is;
       is.shape.outer = toolpath::simplify(isl.shape.outer, tol);
       if (is.shape.outer.empty()) continue;  // narrower than the tolerance
-      for (const auto& h : isl.shape.holes)
-        if (auto s = toolpath::simplify(h, tol); !s.empty()) is.shape.holes.push_back(std::move(s));
-      if (two) {
-        // The same rings at the finer tolerance (a hole the coarse one dropped stays dropped: it
-        // is narrower than 2 · inner_mm, and its wall would have nothing inside it).
-        geo::Rings w{toolpath::simplify(isl.shape.outer, wall_tol)};
-        for (const auto& h : isl.shape.holes)
-          if (auto s = toolpath::simplify(h, tol); !s.empty()) w.push_back(toolpath::simplify(h, wall_tol));
-        walls[i].push_back(std::move(w));
+      // With two tolerances, the same rings at the finer one (a hole the coarse one dropped stays
+      // dropped: it is narrower than 2 · inner_mm, and its wall would have nothing inside it).
+      geo::Rings w;
+      if (two) w.push_back(toolpath::simplify(isl.shape.outer, wall_tol));
+      for (const auto& h : isl.shape.holes) {
+        auto s = toolpath::simplify(h, tol);
+        if (s.empty()) continue;
+        is.shape.holes.push_back(std::move(s));
+        if (two) w.push_back(toolpath::simplify(h, wall_tol));
       }
+      if (two) walls[i].push_back(std::move(w));
       is.area_mm2 = isl.area_mm2;
       is.object = isl.object;
       dst.islands.push_back(std::move(is));

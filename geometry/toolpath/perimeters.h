@@ -59,8 +59,8 @@ struct Perimeters {
 
 // `island`: the island's outline and holes (non-zero fill). Widths and heights in mm.
 // `wall_outline`: the same rings simplified less, when the island was simplified more (see
-// setup::PrintSetup::inner_mm): the outermost loop follows them; the inner loops, the fill
-// region and the gaps are made from `island`.
+// setup::PrintSetup::inner_mm), or `island` itself: the outermost loop and the gaps follow them;
+// the inner loops and the fill region are made from `island`.
 Perimeters make_perimeters(const geo::Rings& island, const PerimeterSpec& spec,
                            const geo::Rings* wall_outline = nullptr);
 

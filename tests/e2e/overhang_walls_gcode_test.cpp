@@ -67,6 +67,14 @@ geo::Mesh shelf() {
   return m;
 }
 
+// Whether some wall piece's middle lies over the gap slab's gap (x 8..14 from the part's left, `sx`).
+bool walls_cross_gap(const LayerMoves& lm, double sx) {
+  return std::any_of(lm.walls.begin(), lm.walls.end(), [&](const test::Move& m) {
+    const double mid = 0.5 * (m.x + m.x0) - sx;
+    return mid > 8 && mid < 14;
+  });
+}
+
 }  // namespace
 
 TEST_CASE("overhang walls: a slab over a gap is bridged from pillar to pillar, no wall in the air") {
@@ -93,10 +101,7 @@ TEST_CASE("overhang walls: a slab over a gap is bridged from pillar to pillar, n
   }
   // The layer above, on the bridge, has its walls all round again.
   const LayerMoves above = moves_on(r.g, layer_at(r.g, 6.4), 5);
-  CHECK(std::any_of(above.walls.begin(), above.walls.end(), [&](const test::Move& m) {
-    const double mid = 0.5 * (m.x + m.x0) - sx;
-    return mid > 8 && mid < 14;
-  }));
+  CHECK(walls_cross_gap(above, sx));
 }
 
 TEST_CASE("overhang walls: with overhang_walls = loops the walls cross the gap in the air") {
@@ -107,10 +112,7 @@ TEST_CASE("overhang walls: with overhang_walls = loops the walls cross the gap i
   REQUIRE_MESSAGE(r.result.ok(), (r.result.ok() ? "" : r.result.error().to_string()));
   const double sx = shift_x(r.g, 0);
   const LayerMoves lm = moves_on(r.g, layer_at(r.g, 6.2), 5);
-  CHECK(std::any_of(lm.walls.begin(), lm.walls.end(), [&](const test::Move& m) {
-    const double mid = 0.5 * (m.x + m.x0) - sx;
-    return mid > 8 && mid < 14;
-  }));
+  CHECK(walls_cross_gap(lm, sx));
 }
 
 TEST_CASE("overhang walls: a shelf's lines run out from the column, each starting on it") {
