@@ -5,6 +5,10 @@
 # --support-material --support-material-auto, all on the benchmark settings (bench/peers/). gcheck
 # measures what each lays on air (its `unsupported` line); support_row.py the support's plastic
 # and trips; time is user seconds. One table, then tranche's ratios to PrusaSlicer.
+# tranche_touch is support=normal with stdlib/features/support-touching-near-bed.rules: support
+# also touches what hangs less than support_z_gap above the bed (no support with a gap fits
+# there), as PrusaSlicer's first support layer does; tranche and tranche_tree keep the gap
+# everywhere, so such an overhang (a flared foot's second layer) counts in their air.
 #   bench/bench_support.sh [BUILD_DIR]      env: MODELS, GCHECK=path/to/gcheck.py, OUT=dir to keep files
 set -uo pipefail
 build=${1:-build}
@@ -15,12 +19,14 @@ bench_need_gcheck bench_support
 MODELS=${MODELS:-mushroom ledge span slope bunny stanford_bunny_closed}
 bench_workdir support
 while read -r name model; do
-  for s in tranche_none tranche tranche_tree prusa; do
+  for s in tranche_none tranche tranche_tree tranche_touch prusa; do
     g="$out/$name.$s.gcode"
     case $s in
       tranche_none) peer_cmd tranche "$model" "$g" ;;
       tranche) peer_cmd tranche "$model" "$g"; CMD+=(--set support=normal) ;;
       tranche_tree) peer_cmd tranche "$model" "$g"; CMD+=(--set support=tree) ;;
+      tranche_touch) peer_cmd tranche "$model" "$g"
+        CMD+=(--set support=normal --rules "$here/../stdlib/features/support-touching-near-bed.rules") ;;
       prusa) command -v prusa-slicer >/dev/null || continue
         peer_cmd prusa "$model" "$g"; CMD=("${CMD[@]:0:1}" --support-material --support-material-auto "${CMD[@]:1}") ;;
     esac

@@ -53,7 +53,9 @@ def table(path):
         print('  '.join(c.ljust(w) for c, w in zip(r, widths)))
     # Ratios of tranche with support to PrusaSlicer with support, per model.
     by = {(r[0], r[1]): r for r in rows if len(r) >= 8}
-    for mine in ('tranche', 'tranche_tree'):
+    for mine in ('tranche', 'tranche_tree', 'tranche_touch'):
+        if not any(k[1] == mine for k in by):
+            continue
         print('\n%s / PrusaSlicer (--support-material --support-material-auto, its normal support):' % mine)
         for m in dict.fromkeys(r[0] for r in rows):
             t, p = by.get((m, mine)), by.get((m, 'prusa'))
@@ -63,8 +65,8 @@ def table(path):
             def ratio(i):
                 a, b = float(t[i]), float(p[i])
                 return 'n/a' if b == 0 else '%.2f' % (a / b)
-            print('  %-22s support plastic %s  support trips %s  time %s  air %s vs %s mm²' % (
-                m, ratio(5), ratio(6), ratio(7), t[2], p[2]))
+            print('  %-22s support plastic %s  support trips %s  time %s  air %s vs %s mm² (%s)' % (
+                m, ratio(5), ratio(6), ratio(7), t[2], p[2], 'at most' if float(t[2]) <= float(p[2]) else 'MORE'))
 
 
 if __name__ == '__main__':

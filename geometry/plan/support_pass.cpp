@@ -332,7 +332,8 @@ Status plan_support(setup::PrintSetup& S, const ctx::Cascade& C, Report& report,
           S, c.near_bed, report, o, "overhang-near-bed",
           fmt::format("it is less than support_z_gap above the bed, so no support fits under it: lay the part on "
                       "another face (--lay-flat, --rotate-x), or let support touch it there: rule when "
-                      "layer.z_bottom < {:g} mm {{ support_z_gap = 0 mm }}",
+                      "layer.z_bottom < {:g} mm {{ support_z_gap = 0 mm }} (the stdlib feature "
+                      "support-touching-near-bed does it for any gap)",
                       near_top));
       !s)
     return s;

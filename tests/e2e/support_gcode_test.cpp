@@ -205,7 +205,12 @@ TEST_CASE("support: an overhang less than the z gap above the bed is said as suc
   REQUIRE(w.result.ok());
   std::string rule;
   for (const auto& x : w.warnings)
-    if (x.code == "overhang-near-bed") rule = x.message.substr(x.message.find("rule when"));
+    if (x.code == "overhang-near-bed") {
+      const size_t from = x.message.find("rule when"), to = x.message.find('}', from);
+      REQUIRE(to != std::string::npos);
+      rule = x.message.substr(from, to + 1 - from);
+      CHECK(x.message.find("support-touching-near-bed") != std::string::npos);
+    }
   REQUIRE(rule == "rule when layer.z_bottom < 0.4 mm { support_z_gap = 0 mm }");
   Run t = run(dir, "touched", m, {{"support", "normal"}}, rule + "\n");
   REQUIRE_MESSAGE(t.result.ok(), (t.result.ok() ? "" : t.result.error().to_string()));

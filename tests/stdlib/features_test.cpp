@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <set>
 
 #include "tests/stdlib/stdlib_helpers.h"
@@ -401,6 +402,45 @@ TEST_CASE("features/support-blockers-by-height: support above support_from, none
   auto moved = slice_with(dir, "moved", mushroom_at(8),
                           Profile().feature("support-blockers-by-height").set("support_from", "10"));
   CHECK(support_moves(moved) == 0);
+}
+
+TEST_CASE("features/support-touching-near-bed: a cap one layer above the bed stands on a pad; higher caps keep their gap") {
+  TempDir dir("feat-support-near-bed");
+  // The cap's underside is 0.2 mm above the bed: no support with a 0.2 mm gap fits under it.
+  auto plain = slice_with(dir, "plain", mushroom_at(0.2), Profile().set("support", "normal"));
+  CHECK(support_moves(plain) + support_moves(plain, "Support material interface") == 0);
+  auto touch = slice_with(dir, "touch", mushroom_at(0.2), Profile().feature("support-touching-near-bed"));
+  // The pad: layer 0 under the cap (its stem is at 8..12 mm; the cap spans 0..20 mm), nothing above.
+  int pad = 0;
+  for (const auto& m : touch.moves) {
+    if (!extrudes(m) || m.type.find("Support material") != 0) continue;
+    CHECK(m.layer == 0);
+    ++pad;
+  }
+  CHECK(pad > 20);
+  // A cap 0.4 mm up: with the profile's 0.2 mm gap, support fits under it (one layer, its gap
+  // kept), and the feature changes nothing.
+  auto support_layers = [](const Gcode& g) {
+    std::set<int> out;
+    for (const auto& m : g.moves)
+      if (extrudes(m) && m.type.find("Support material") == 0) out.insert(m.layer);
+    return out;
+  };
+  auto high = slice_with(dir, "high", mushroom_at(0.4), Profile().feature("support-touching-near-bed"));
+  auto high_plain = slice_with(dir, "high-plain", mushroom_at(0.4), Profile().set("support", "normal"));
+  CHECK(support_layers(high) == std::set<int>{0});
+  CHECK(support_layers(high_plain) == std::set<int>{0});
+  // The user's own gap of 0.4 mm (a rule before the feature): no support with that gap fits under
+  // the same cap, so the feature's pad touches it, two layers high.
+  const auto gap_rule = dir / "gap.rules";
+  {
+    std::ofstream f(gap_rule);
+    f << "rule \"wider gap\" { support_z_gap = 0.4 mm }\n";
+  }
+  auto wide = Profile().rules(gap_rule.string());
+  CHECK(support_layers(slice_with(dir, "wide-plain", mushroom_at(0.4), wide.set("support", "normal"))).empty());
+  CHECK(support_layers(slice_with(dir, "wide", mushroom_at(0.4), wide.feature("support-touching-near-bed"))) ==
+        std::set<int>{0, 1});
 }
 
 TEST_CASE("features/support-for-overhangs-only: sparse support at its own speed, one interface layer") {

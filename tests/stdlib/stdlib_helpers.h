@@ -22,11 +22,13 @@ namespace tranche::test {
 struct Profile {
   std::string printer_ = "generic-marlin";
   std::string material_ = "pla";
+  std::vector<std::string> rule_files_;  // the user's own rule files, before the features
   std::vector<std::string> features_;  // names in stdlib/features, without .rules
   std::vector<std::pair<std::string, std::string>> sets_ = {{"skirt_loops", "0"}};
 
   Profile printer(std::string p) const { Profile c = *this; c.printer_ = std::move(p); return c; }
   Profile material(std::string m) const { Profile c = *this; c.material_ = std::move(m); return c; }
+  Profile rules(std::string path) const { Profile c = *this; c.rule_files_.push_back(std::move(path)); return c; }
   Profile feature(std::string f) const { Profile c = *this; c.features_.push_back(std::move(f)); return c; }
   Profile set(std::string k, std::string v) const { Profile c = *this; c.sets_.emplace_back(std::move(k), std::move(v)); return c; }
 };
@@ -42,6 +44,7 @@ inline Gcode slice_with(const TempDir& dir, const std::string& name, const geo::
   o.printer = p.printer_;
   o.material = p.material_;
   o.stdlib_dir = stdlib_path().string();
+  o.rules = p.rule_files_;
   for (const auto& f : p.features_) o.rules.push_back((stdlib_path() / "features" / (f + ".rules")).string());
   o.sets = p.sets_;
   Report report;
