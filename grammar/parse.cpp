@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <new>
+
 #include "RulesLexer.h"
 #include "RulesParser.h"
 #include "grammar/build_ast.h"
@@ -87,6 +89,8 @@ ast::File parse_file(const ast::SourceMap& sources, uint32_t file_id, diag::Sink
     return out;
   } catch (const TooManyErrors&) {
     return out;
+  } catch (const std::bad_alloc&) {
+    throw;  // not a syntax error: the tools say the memory ran out (base/memory.h)
   } catch (const std::exception& e) {
     // The ANTLR runtime throws on states it cannot handle; never let that escape.
     sink.error("E0004", start_span(sources, file_id, begin), fmt::format("the parser failed: {}", e.what()),
@@ -117,6 +121,8 @@ ast::ExprPtr parse_expression(const ast::SourceMap& sources, uint32_t file_id, u
     return result;
   } catch (const TooManyErrors&) {
     return nullptr;
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception& e) {
     sink.error("E0004", start_span(sources, file_id, begin), fmt::format("the parser failed: {}", e.what()),
                "while reading this expression");
