@@ -122,7 +122,7 @@ Status LayerTask::support_level() {
     support_kind_ = pc.kind;
     support_wall_ = pc.wall;
     const geo::Rings* region = pc.region;
-    for (geo::Rings& piece : support::components(*region)) {
+    for (geo::Rings& piece : support::pieces(*region)) {  // booleans' results: no union needed
       IslandPlan ip;
       ip.index = static_cast<int>(plan_.islands.size());
       ip.support = true;

@@ -30,6 +30,44 @@ std::vector<Rings> components(const Rings& region) {
   return out;
 }
 
+std::vector<Rings> pieces(const Rings& region) {
+  std::vector<Rings> out;
+  std::vector<size_t> outer_of;  // out[j]'s outer: region[outer_of[j]]
+  std::vector<double> outer_area;
+  std::vector<geo::BBox2> outer_box;
+  std::vector<size_t> holes;
+  for (size_t i = 0; i < region.size(); ++i) {
+    const double a = ClipperLib::Area(region[i]);
+    if (a > 0) {
+      out.push_back({region[i]});
+      outer_of.push_back(i);
+      outer_area.push_back(a);
+      outer_box.push_back(geo::bbox(region[i]));
+    } else if (a < 0) {
+      holes.push_back(i);
+    }
+  }
+  for (size_t h : holes) {
+    const double hole_area = -ClipperLib::Area(region[h]);
+    size_t best = out.size();
+    for (const geo::Point& p : region[h]) {  // a vertex strictly inside its outer (one may touch it)
+      bool on_edge = false;
+      for (size_t j = 0; j < out.size(); ++j) {
+        const geo::BBox2& b = outer_box[j];
+        if (outer_area[j] <= hole_area || p.X < b.min_x || p.X > b.max_x || p.Y < b.min_y || p.Y > b.max_y) continue;
+        const int in = ClipperLib::PointInPolygon(p, region[outer_of[j]]);
+        if (in < 0) on_edge = true;
+        else if (in > 0 && (best == out.size() || outer_area[j] < outer_area[best])) best = j;
+      }
+      if (!on_edge) break;  // this vertex decided it
+      best = out.size();
+    }
+    if (best == out.size()) return components(region);
+    out[best].push_back(region[h]);
+  }
+  return out;
+}
+
 double lines_length(const Rings& lines) {
   double len = 0;
   for (const geo::Ring& l : lines)

@@ -24,6 +24,11 @@ struct OverhangSpec {
 // Each outer ring of `region` with the holes inside it (Clipper's nesting): one region per
 // connected piece. Rings follow the usual orientation (outer CCW, holes CW).
 std::vector<geo::Rings> components(const geo::Rings& region);
+// The same for a boolean's result (rings that do not cross, outers CCW, holes CW, as every
+// SupportLayer region is), without the union: each hole goes to the smallest outer around one of
+// its vertices; outers in the order given. Falls back on components() when a hole has no vertex
+// strictly inside an outer.
+std::vector<geo::Rings> pieces(const geo::Rings& region);
 
 // Length (mm) of open lines.
 double lines_length(const geo::Rings& lines);

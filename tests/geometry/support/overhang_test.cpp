@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include "tests/geometry/toolpath/fixtures.h"
 #include "geometry/support/brim.h"
 #include "geometry/support/overhang.h"
@@ -95,6 +97,64 @@ TEST_CASE("components: each outer ring with its holes") {
   size_t with_hole = c[0].size() == 2 ? 0 : 1;
   CHECK(c[with_hole].size() == 2);
   CHECK(c[1 - with_hole].size() == 1);
+}
+
+namespace {
+// A piece as a comparable value: its rings as coordinate pairs, each started at its least vertex, sorted.
+using Coords = std::vector<std::pair<geo::coord_t, geo::coord_t>>;
+std::vector<Coords> canonical_piece(const geo::Rings& piece) {
+  std::vector<Coords> out;
+  for (const geo::Ring& r : piece) {
+    Coords c;
+    for (const geo::Point& p : r) c.emplace_back(p.X, p.Y);
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    out.push_back(std::move(c));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+std::vector<std::vector<Coords>> canonical_pieces(const std::vector<geo::Rings>& ps) {
+  std::vector<std::vector<Coords>> out;
+  for (const auto& p : ps) out.push_back(canonical_piece(p));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+TEST_CASE("pieces: a boolean's result split as components() splits it, without the union") {
+  // Nested: a frame round a frame round a square, a hole touching its outer at a vertex, and
+  // random unions and differences of rectangles and discs.
+  std::vector<geo::Rings> cases;
+  cases.push_back(toolpath::union_of({rect(0, 0, 30, 30), rect(2, 2, 28, 28, false), rect(5, 5, 25, 25),
+                                      rect(7, 7, 23, 23, false), rect(10, 10, 20, 20)}));
+  cases.push_back(toolpath::difference({rect(0, 0, 10, 10)}, {geo::Ring{geo::to_point(0, 5), geo::to_point(5, 2),
+                                                                        geo::to_point(8, 5), geo::to_point(5, 8)}}));
+  test::Lcg rnd{7};
+  for (int c = 0; c < 60; ++c) {
+    geo::Rings add, cut;
+    for (int i = 0; i < 6; ++i) {
+      const double x = 40 * rnd(), y = 40 * rnd(), w = 2 + 15 * rnd(), h = 2 + 15 * rnd();
+      add.push_back(i % 2 ? rect(x, y, x + w, y + h) : test::circle(x, y, 0.5 * w, 24));
+      const double u = 40 * rnd(), v = 40 * rnd();
+      cut.push_back(i % 2 ? test::circle(u, v, 1 + 4 * rnd(), 24) : rect(u, v, u + 1 + 6 * rnd(), v + 1 + 6 * rnd()));
+    }
+    cases.push_back(toolpath::difference(toolpath::union_of(add), cut));
+  }
+  size_t with_holes = 0, nested = 0;
+  for (const geo::Rings& r : cases) {
+    const auto mine = pieces(r), theirs = components(r);
+    CHECK(canonical_pieces(mine) == canonical_pieces(theirs));
+    for (const auto& p : mine) with_holes += p.size() > 1;
+    nested += mine.size() > 0 && mine.size() < r.size() && mine.size() > 1;
+  }
+  CHECK(with_holes > 10);  // the cases do exercise the holes' assignment
+  CHECK(nested > 0);
+  // Outers keep their order.
+  const geo::Rings two{rect(20, 0, 30, 10), rect(0, 0, 10, 10), rect(2, 2, 4, 4, false)};
+  const auto p = pieces(two);
+  REQUIRE(p.size() == 2);
+  CHECK(p[0].size() == 1);
+  CHECK(p[1].size() == 2);
 }
 
 TEST_CASE("brim: loops round an island, outermost first, none over a neighbour") {
