@@ -9,6 +9,9 @@
 # also touches what hangs less than support_z_gap above the bed (no support with a gap fits
 # there), as PrusaSlicer's first support layer does; tranche and tranche_tree keep the gap
 # everywhere, so such an overhang (a flared foot's second layer) counts in their air.
+# "fused" (support_fused.py) is the support that touches the part: closer than support_xy_gap
+# less half a bead beside it, or under it closer than support_z_gap (mm², slivers under half a
+# bead wide left out); issue 12 wants none of it by default.
 #   bench/bench_support.sh [BUILD_DIR]      env: MODELS, GCHECK=path/to/gcheck.py, OUT=dir to keep files
 set -uo pipefail
 build=${1:-build}
@@ -38,7 +41,9 @@ while read -r name model; do
     fi
     off=$(/usr/bin/python3 "$here/quality_row.py" --offset "$model" 100,100)
     /usr/bin/python3 "$GCHECK" "$model" "$g" --offset="$off" --json "$out/$name.$s.json" >"$out/$name.$s.gcheck" 2>&1
-    /usr/bin/python3 "$here/support_row.py" "$name" "$s" "$out/$name.$s.json" "$g" "$t" >>"$rows"
+    fused=""
+    [[ $s != tranche_none ]] && fused=$(/usr/bin/python3 "$here/support_fused.py" "$g")
+    /usr/bin/python3 "$here/support_row.py" "$name" "$s" "$out/$name.$s.json" "$g" "$t" "$fused" >>"$rows"
   done
 done < <(bench_models "$MODELS")
 /usr/bin/python3 "$here/support_row.py" --table "$rows"

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """One row of bench_support.sh: what gcheck says a G-code lays on air, and what its support costs.
 
-usage: support_row.py NAME SLICER GCHECK.json FILE.gcode SECONDS
+usage: support_row.py NAME SLICER GCHECK.json FILE.gcode SECONDS [FUSED]
        support_row.py --table ROWS.tsv
+FUSED is support_fused.py's line ("xy A z B layers N"): the support fused to the part, in mm².
 Support is the extrusion typed support (;TYPE: containing "support", PrusaSlicer's and Cura's
 names): its plastic (mm³ of filament), and its trips (runs of travel moves that start or end at a
 support extrusion). Handles M82/M83 and G92.
@@ -34,20 +35,23 @@ def support_costs(path, filament=1.75):
     return fed * math.pi * (filament / 2) ** 2, trips
 
 
-def row(name, slicer, js, gcode, seconds):
+def row(name, slicer, js, gcode, seconds, fused=''):
     s = json.load(open(js))['summary']
     vol, trips = support_costs(gcode)
     cells = [name, slicer, '%.1f' % s.get('unsupported_area_total', float('nan')),
              '%.1f' % s.get('unsupported_area_max', float('nan')), str(s.get('unsupported_layers', '?')),
              '%.0f' % vol, str(trips), seconds, str(s.get('verdict', '?'))]
+    if fused:
+        w = fused.split()
+        cells.append('%.1f' % (float(w[1]) + float(w[3])) if len(w) >= 4 else '?')
     print('\t'.join(cells))
 
 
 def table(path):
     rows = [l.rstrip('\n').split('\t') for l in open(path) if l.strip()]
     head = ['model', 'slicer', 'air mm²', 'worst layer mm²', 'air layers', 'support mm³', 'support trips', 'time s',
-            'gcheck']
-    widths = [max(len(h), *(len(r[i]) for r in rows if len(r) > i)) for i, h in enumerate(head)]
+            'gcheck', 'fused mm²']
+    widths = [max([len(h)] + [len(r[i]) for r in rows if len(r) > i]) for i, h in enumerate(head)]
     print('  '.join(h.ljust(w) for h, w in zip(head, widths)))
     for r in rows:
         print('  '.join(c.ljust(w) for c, w in zip(r, widths)))
@@ -73,4 +77,4 @@ if __name__ == '__main__':
     if sys.argv[1] == '--table':
         table(sys.argv[2])
     else:
-        row(*sys.argv[1:6])
+        row(*sys.argv[1:7])
