@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Support material against PrusaSlicer's: each model with overhangs (generated: a mushroom, a
 # bracket's ledge, a slab spanning 30 mm, a 53° funnel; PrusaSlicer's bunny; the capped Stanford
-# bunny) sliced by tranche without support, with support=normal and support=tree, and by PrusaSlicer with
-# --support-material --support-material-auto, all on the benchmark settings (bench/peers/). gcheck
+# bunny) sliced by tranche without support, with support=normal and support=tree, by PrusaSlicer with
+# --support-material --support-material-auto, and by CuraEngine with its tree support (cura_tree, at
+# tranche's 45°, 0.2 mm and 0.5 mm gaps), all on the benchmark settings (bench/peers/). gcheck
 # measures what each lays on air (its `unsupported` line); support_row.py the support's plastic
-# and trips; time is user seconds. One table, then tranche's ratios to PrusaSlicer.
+# and trips; time is user seconds. One table, then tranche's ratios to PrusaSlicer, and its tree's
+# to Cura's.
 # tranche_touch is support=normal with stdlib/features/support-touching-near-bed.rules: support
 # also touches what hangs less than support_z_gap above the bed (no support with a gap fits
 # there), as PrusaSlicer's first support layer does; tranche and tranche_tree keep the gap
@@ -22,7 +24,7 @@ bench_need_gcheck bench_support
 MODELS=${MODELS:-mushroom ledge span slope bunny stanford_bunny_closed}
 bench_workdir support
 while read -r name model; do
-  for s in tranche_none tranche tranche_tree tranche_touch prusa; do
+  for s in tranche_none tranche tranche_tree tranche_touch prusa cura_tree; do
     g="$out/$name.$s.gcode"
     case $s in
       tranche_none) peer_cmd tranche "$model" "$g" ;;
@@ -30,6 +32,8 @@ while read -r name model; do
       tranche_tree) peer_cmd tranche "$model" "$g"; CMD+=(--set support=tree) ;;
       tranche_touch) peer_cmd tranche "$model" "$g"
         CMD+=(--set support=normal --rules "$here/../stdlib/features/support-touching-near-bed.rules") ;;
+      cura_tree) command -v CuraEngine >/dev/null || continue
+        peer_cmd cura_tree "$model" "$g" || continue ;;
       prusa) command -v prusa-slicer >/dev/null || continue
         peer_cmd prusa "$model" "$g"; CMD=("${CMD[@]:0:1}" --support-material --support-material-auto "${CMD[@]:1}") ;;
     esac

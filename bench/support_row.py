@@ -55,14 +55,17 @@ def table(path):
     print('  '.join(h.ljust(w) for h, w in zip(head, widths)))
     for r in rows:
         print('  '.join(c.ljust(w) for c, w in zip(r, widths)))
-    # Ratios of tranche with support to PrusaSlicer with support, per model.
+    # Ratios of tranche with support to PrusaSlicer's support, and of its tree to Cura's, per model.
     by = {(r[0], r[1]): r for r in rows if len(r) >= 8}
-    for mine in ('tranche', 'tranche_tree', 'tranche_touch'):
-        if not any(k[1] == mine for k in by):
+    peers = {'prusa': 'PrusaSlicer (--support-material --support-material-auto, its normal support)',
+             'cura_tree': "CuraEngine's tree support"}
+    for mine, peer in (('tranche', 'prusa'), ('tranche_tree', 'prusa'), ('tranche_touch', 'prusa'),
+                       ('tranche_tree', 'cura_tree')):
+        if not any(k[1] == mine for k in by) or not any(k[1] == peer for k in by):
             continue
-        print('\n%s / PrusaSlicer (--support-material --support-material-auto, its normal support):' % mine)
+        print('\n%s / %s:' % (mine, peers[peer]))
         for m in dict.fromkeys(r[0] for r in rows):
-            t, p = by.get((m, mine)), by.get((m, 'prusa'))
+            t, p = by.get((m, mine)), by.get((m, peer))
             if not t or not p:
                 continue
 

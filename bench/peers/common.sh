@@ -119,8 +119,26 @@ cura_defs() {
   mapfile -d '' -t CURA_ARGS <"$d/args"
 }
 
+# cura_variant NAME 'key = value'...: CURA_VARIANT_ARGS, the arguments of cura.settings with these
+# lines after it (the last value of a key wins, and the settings whose formulas read it follow),
+# cached as args.NAME until the lines or cura.settings change. CURA_ARGS stays the plain set.
+cura_variant() {
+  [[ -n ${CURA_DEFS:-} ]] || cura_defs || return 1
+  local name=$1 d="$CACHE/cura"
+  shift
+  { cat "$PEERS_DIR/cura.settings"; printf '%s\n' "$@"; } >"$d/settings.$name.new"
+  if [[ -f "$d/args.$name" ]] && cmp -s "$d/settings.$name.new" "$d/settings.$name"; then
+    rm -f "$d/settings.$name.new"
+  else
+    mv "$d/settings.$name.new" "$d/settings.$name"
+    /usr/bin/python3 "$BENCH_DIR/cura_settings.py" "$d/definitions" "$d/settings.$name" >"$d/args.$name" ||
+      { rm -f "$d/args.$name"; return 1; }
+  fi
+  mapfile -d '' -t CURA_VARIANT_ARGS <"$d/args.$name"
+}
+
 # After `peer_cmd SLICER MODEL OUT`, CMD holds the command line (SLICER: tranche, tranche_comb,
-# tranche_classic, tranche_variable, prusa, cura).
+# tranche_classic, tranche_variable, prusa, cura, cura_tree).
 peer_cmd() {
   local slicer=$1 model=$2 out=$3
   case $slicer in
@@ -135,6 +153,12 @@ peer_cmd() {
     cura)
       [[ -n ${CURA_DEFS:-} ]] || cura_defs || { echo "bench: cannot get Cura's definitions (apt-get download cura)" >&2; return 1; }
       CMD=(CuraEngine slice -j "$CURA_DEFS/fdmprinter.def.json" "${CURA_ARGS[@]}" -l "$model" -o "$out") ;;
+    # Cura's tree support, at tranche's support defaults (45°, 0.2 mm above, 0.5 mm beside).
+    cura_tree)
+      cura_variant tree "support_enable = True" "support_structure = tree" "support_angle = 45" \
+        "support_z_distance = 0.2" "support_xy_distance = 0.5" ||
+        { echo "bench: cannot get Cura's definitions (apt-get download cura)" >&2; return 1; }
+      CMD=(CuraEngine slice -j "$CURA_DEFS/fdmprinter.def.json" "${CURA_VARIANT_ARGS[@]}" -l "$model" -o "$out") ;;
     *) echo "bench: unknown slicer $slicer" >&2; return 1 ;;
   esac
 }
