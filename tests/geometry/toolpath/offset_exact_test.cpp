@@ -364,3 +364,34 @@ TEST_CASE("clip: a spike of no width is no part of the region: not grown into a 
     }
   }
 }
+
+TEST_CASE("clip: a star with arms narrower than twice the distance shrinks to nothing, no loop left") {
+  // The sweep's shape: eleven arms 1.2 mm wide at their root, each tip carrying a flag 8 µm wide.
+  // Shrunk by 1.5 mm nothing is left; the trimmed curve was simple and kept a triangle of 0.2 mm²
+  // where none of its segments is on the offset (ClipperOffset was right). On the Stanford bunny
+  // with concentric infill such loops were printed (a loop 2 mm across on layer 187).
+  const char* txt =
+      "6725061,0 6799948,23165 6797582,30812 574084,168566 5657481,3635842 5707956,3695817 5701831,3700971 "
+      "391817,452180 2793691,6117331 2803728,6195073 2795789,6196098 85150,592230 -957076,6656610 -990663,6727438 "
+      "-997896,6724008 -248551,544251 -4403978,5082462 -4470525,5123888 -4474756,5117092 -503339,323476 "
+      "-6452649,1894669 -6531029,1893540 -6530913,1885536 -598320,0 -6452649,-1894669 -6517976,-1937994 "
+      "-6513552,-1944665 -503339,-323476 -4403978,-5082462 -4435511,-5154228 -4428183,-5157448 -248551,-544251 "
+      "-957076,-6656610 -944804,-6734031 -936898,-6732778 85150,-592230 2793691,-6117331 2845872,-6175827 "
+      "2851845,-6170499 391817,-452180 5657481,-3635842 5733004,-3656841 5735148,-3649129 574084,-168566";
+  geo::Ring ring;
+  std::istringstream in(txt);
+  long long x = 0, y = 0;
+  char comma = 0;
+  while (in >> x >> comma >> y) ring.emplace_back(x, y);
+  REQUIRE(ring.size() == 44);
+  const geo::Rings region{ring};
+  const test::ExactRegion exact(region);
+  for (double d : {-0.3, -0.6, -1.0, -1.5, -2.0}) {
+    INFO("shrunk by " << -d);
+    const geo::Rings ours = offset(region, d);
+    const test::OffsetCheck c = judge(exact, region, ours, d, 16384, 24);
+    CHECK(c.missing == 0);
+    CHECK(c.extra == 0);
+    if (d <= -1.0) CHECK(ours.empty());  // the arms meet 0.6 mm from the centre: nothing is 1 mm inside
+  }
+}
