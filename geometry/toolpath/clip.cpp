@@ -486,8 +486,10 @@ bool as_is(Rings raw, Rings& out) {
 // Whether `v`, between `a` and `b`, is the end of a spike of no width: the ring goes back from it
 // along the line it came by (exact test).
 bool turns_back(const geo::Point& a, const geo::Point& v, const geo::Point& b) {
-  if (Wide(v.X - a.X) * Wide(b.Y - v.Y) != Wide(v.Y - a.Y) * Wide(b.X - v.X)) return false;
-  return Wide(v.X - a.X) * Wide(b.X - v.X) + Wide(v.Y - a.Y) * Wide(b.Y - v.Y) < 0;
+  // Going back along a line, the dot product is minus the lengths' product: its sign in doubles
+  // is exact there, and rules out nearly every vertex before the exact test.
+  if (double(v.X - a.X) * double(b.X - v.X) + double(v.Y - a.Y) * double(b.Y - v.Y) >= 0) return false;
+  return Wide(v.X - a.X) * Wide(b.Y - v.Y) == Wide(v.Y - a.Y) * Wide(b.X - v.X);
 }
 
 // `ring` less its spikes of no width (out along a line and back along it: no point of the region
@@ -499,9 +501,13 @@ bool without_spikes(const geo::Ring& ring, geo::Ring& out) {
   const size_t n = ring.size();
   if (n < 3) return false;
   bool any = false;
-  for (size_t i = 0; i < n && !any; ++i) {
-    const geo::Point &a = ring[(i + n - 1) % n], &v = ring[i], &b = ring[(i + 1) % n];
-    any = v == b || turns_back(a, v, b);
+  const geo::Point *a = &ring[n - 2], *v = &ring[n - 1];
+  for (const geo::Point& b : ring) {
+    if (*v == b || turns_back(*a, *v, b)) {
+      any = true;
+      break;
+    }
+    a = v, v = &b;
   }
   if (!any) return false;
   geo::Ring s;
@@ -541,16 +547,19 @@ bool without_spikes(const geo::Ring& ring, geo::Ring& out) {
 bool off_the_offset(const Rings& out, const std::vector<const geo::Ring*>& region, double reach) {
   if (reach <= 0) return false;
   const double r2 = reach * reach;
+  const coord_t rc = static_cast<coord_t>(reach);
   for (const geo::Ring& o : out) {
     for (const geo::Point* q : {&o[0], &o[o.size() / 2]}) {
       const double qx = double(q->X), qy = double(q->Y);
+      const coord_t y0 = q->Y - rc, y1 = q->Y + rc, x0 = q->X - rc, x1 = q->X + rc;
       for (const geo::Ring* rp : region) {
         const geo::Ring& r = *rp;
         for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-          const double ax = double(r[j].X), ay = double(r[j].Y), bx = double(r[i].X), by = double(r[i].Y);
-          if ((ax < qx - reach && bx < qx - reach) || (ax > qx + reach && bx > qx + reach) ||
-              (ay < qy - reach && by < qy - reach) || (ay > qy + reach && by > qy + reach))
+          const geo::Point &pa = r[j], &pb = r[i];
+          if ((pa.Y < y0 && pb.Y < y0) || (pa.Y > y1 && pb.Y > y1) || (pa.X < x0 && pb.X < x0) ||
+              (pa.X > x1 && pb.X > x1))
             continue;
+          const double ax = double(pa.X), ay = double(pa.Y), bx = double(pb.X), by = double(pb.Y);
           const double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
           const double t = l2 > 0 ? std::clamp(((qx - ax) * ex + (qy - ay) * ey) / l2, 0.0, 1.0) : 0.0;
           const double dx = ax + t * ex - qx, dy = ay + t * ey - qy;
@@ -815,13 +824,18 @@ geo::Ring simplify_input(const geo::Ring& ring, coord_t tol) {
   std::vector<char> keep = simplified(ring, tol);
   std::vector<char> pin(n, 0);
   bool dropped = false;
-  for (size_t i = 0; i < n; ++i) {
-    const geo::Point &a = ring[(i + n - 1) % n], &v = ring[i], &b = ring[(i + 1) % n];
-    const double ax = double(v.X - a.X), ay = double(v.Y - a.Y), bx = double(b.X - v.X), by = double(b.Y - v.Y);
-    const double dot = ax * bx + ay * by, cx = double(b.X - a.X), cy = double(b.Y - a.Y);
-    const bool back = dot < -0.5 * std::sqrt((ax * ax + ay * ay) * (bx * bx + by * by));
-    if (v == a || v == b || (back && cx * cx + cy * cy < 16.0 * double(tol) * double(tol))) {
-      for (size_t k : {(i + n - 1) % n, i, (i + 1) % n}) {
+  for (size_t h = n - 1, i = 0; i < n; h = i++) {
+    const size_t j = i + 1 < n ? i + 1 : 0;
+    const geo::Point &a = ring[h], &v = ring[i], &b = ring[j];
+    const double cx = double(b.X - a.X), cy = double(b.Y - a.Y);
+    bool back = false;
+    if (cx * cx + cy * cy < 16.0 * double(tol) * double(tol)) {
+      const double ax = double(v.X - a.X), ay = double(v.Y - a.Y), bx = double(b.X - v.X), by = double(b.Y - v.Y);
+      const double dot = ax * bx + ay * by;
+      back = dot < 0 && 4 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);  // by more than 120°
+    }
+    if (back || v == a || v == b) {
+      for (size_t k : {h, i, j}) {
         pin[k] = 1;
         dropped = dropped || !keep[k];
       }
