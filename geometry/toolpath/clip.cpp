@@ -538,8 +538,8 @@ bool without_spikes(const geo::Ring& ring, geo::Ring& out) {
   return true;
 }
 
-// Whether a ring of the trimmed curve `out` is no part of the offset: its first and middle
-// vertices lie closer than `reach` units to an edge of `region` (every vertex of the offset lies
+// Whether a ring of the trimmed curve `out` is no part of the offset: its first vertex lies
+// closer than `reach` units to an edge of `region` (every vertex of the offset lies
 // the distance from the region's border, to the arcs' tolerance). Where the trimmed curve is
 // simple and nested as a region's, a loop left by segments that cross where none of them is on
 // the offset still can be: a star with arms narrower than twice the distance, shrunk, kept a
@@ -549,7 +549,8 @@ bool off_the_offset(const Rings& out, const std::vector<const geo::Ring*>& regio
   const double r2 = reach * reach;
   const coord_t rc = static_cast<coord_t>(reach);
   for (const geo::Ring& o : out) {
-    for (const geo::Point* q : {&o[0], &o[o.size() / 2]}) {
+    {
+      const geo::Point* q = &o[0];
       const double qx = double(q->X), qy = double(q->Y);
       const coord_t y0 = q->Y - rc, y1 = q->Y + rc, x0 = q->X - rc, x1 = q->X + rc;
       for (const geo::Ring* rp : region) {
@@ -822,26 +823,25 @@ geo::Ring simplify_input(const geo::Ring& ring, coord_t tol) {
   const size_t n = ring.size();
   if (n < 4 || tol <= 0) return ring;
   std::vector<char> keep = simplified(ring, tol);
-  std::vector<char> pin(n, 0);
-  bool dropped = false;
-  for (size_t h = n - 1, i = 0; i < n; h = i++) {
-    const size_t j = i + 1 < n ? i + 1 : 0;
-    const geo::Point &a = ring[h], &v = ring[i], &b = ring[j];
+  auto next = [n](size_t i) { return i + 1 < n ? i + 1 : 0; };
+  auto prev = [n](size_t i) { return i > 0 ? i - 1 : n - 1; };
+  auto turns_back_near = [&](size_t i) {
+    const geo::Point &a = ring[prev(i)], &v = ring[i], &b = ring[next(i)];
+    if (v == a || v == b) return true;
     const double cx = double(b.X - a.X), cy = double(b.Y - a.Y);
-    bool back = false;
-    if (cx * cx + cy * cy < 16.0 * double(tol) * double(tol)) {
-      const double ax = double(v.X - a.X), ay = double(v.Y - a.Y), bx = double(b.X - v.X), by = double(b.Y - v.Y);
-      const double dot = ax * bx + ay * by;
-      back = dot < 0 && 4 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);  // by more than 120°
-    }
-    if (back || v == a || v == b) {
-      for (size_t k : {h, i, j}) {
-        pin[k] = 1;
-        dropped = dropped || !keep[k];
-      }
-    }
-  }
+    if (cx * cx + cy * cy >= 16.0 * double(tol) * double(tol)) return false;
+    const double ax = double(v.X - a.X), ay = double(v.Y - a.Y), bx = double(b.X - v.X), by = double(b.Y - v.Y);
+    const double dot = ax * bx + ay * by;
+    return dot < 0 && 4 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);  // by more than 120°
+  };
+  // Only a dropped vertex can matter: it or a neighbour turning back near it.
+  bool dropped = false;
+  for (size_t k = 0; k < n && !dropped; ++k)
+    dropped = !keep[k] && (turns_back_near(prev(k)) || turns_back_near(k) || turns_back_near(next(k)));
   if (!dropped) return kept(ring, keep);
+  std::vector<char> pin(n, 0);
+  for (size_t i = 0; i < n; ++i)
+    if (turns_back_near(i)) pin[prev(i)] = pin[i] = pin[next(i)] = 1;
   // Douglas-Peucker between consecutive pinned vertices, from the first (kept in the ring's order).
   size_t first = 0;
   while (!pin[first]) ++first;

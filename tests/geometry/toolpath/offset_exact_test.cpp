@@ -169,7 +169,7 @@ std::vector<Case> shapes(test::Lcg& rnd, int count) {
       if (rnd() < 0.5) {  // a keyhole: the outline runs into a hole along a slit of no width
         eight = {pt(0, 0), pt(3 * s, 0), pt(3 * s, 3 * s), pt(1.5 * s, 3 * s), pt(1.5 * s, 2 * s), pt(2 * s, 2 * s),
                  pt(2 * s, s), pt(s, s), pt(s, 2 * s), pt(1.5 * s, 2 * s), pt(1.5 * s, 3 * s), pt(0, 3 * s)};
-        if (rnd() < 0.5) {  // the slit's sides e apart
+        if (rnd() < 0.5) {  // the slit widening to e where it meets the hole
           eight[4].X += geo::to_units(e), eight[9].X -= geo::to_units(e);
           out.push_back({"keyhole", {eight}});
         } else {
