@@ -1,8 +1,8 @@
 // toolpath::offset against the exact offset (exact_region.h), on shapes where the trimmed curve
 // gives up and the union cleans the curve built with detours: stars whose tips carry hairline
 // loops and returns, combs with teeth and gaps down to a micrometre, outlines with µm edges,
-// self-touching rings. ClipperOffset is run beside it to say where the two disagree and which is
-// right.
+// self-touching rings, plates with star-shaped holes. ClipperOffset is run beside it to say where
+// the two disagree and which is right.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -32,10 +32,11 @@ geo::Rings clipper_offset(const geo::Rings& region, double mm) {
 }
 
 // Sample points over the offset's box and in a disc round every vertex of the region (where the
-// joins are), judged against the exact offset. The band: both offsets' arcs are chords of at most 1.5 steps of the arc tolerance (5 µm), which
-// cut in by up to 2.25 times it (the step count rounded), and grown inputs move by 1 µm.
-test::OffsetCheck judge(const test::ExactRegion& exact, const geo::Rings& region, const geo::Rings& computed, double mm,
-                        int grid = 4096, int per_vertex = 6) {
+// joins are), judged against the exact offset. The band: both offsets' arcs are chords of up to
+// 1.5 steps of the arc tolerance (5 µm), which cut in by up to 2.25 times it (the step count
+// rounded), and grown inputs move by 1 µm.
+test::OffsetCheck judge(const test::ExactRegion& exact, const geo::Rings& region, const geo::Rings& computed,
+                        double mm, int grid = 4096, int per_vertex = 6) {
   constexpr double band = 0.0125;
   geo::BBox2 box = bbox(region);
   const geo::coord_t grow = geo::to_units(std::max(mm, 0.0) + 0.05);
@@ -136,7 +137,7 @@ struct Case {
 std::vector<Case> shapes(test::Lcg& rnd, int count) {
   std::vector<Case> out;
   for (int k = 0; k < count; ++k) {
-    const int family = k % 6;
+    const int family = k % 7;
     if (family == 0 || family == 1) {
       const int tip = 1 + static_cast<int>(5 * rnd());
       const double len = std::pow(10, -3 + 2.5 * rnd());  // 1 µm .. 0.3 mm
@@ -178,6 +179,22 @@ std::vector<Case> shapes(test::Lcg& rnd, int count) {
       } else {
         out.push_back({"touching", {eight}});
       }
+    } else if (family == 5) {  // a plate with star-shaped holes whose tips carry hairlines (grown, they close)
+      geo::Rings plate{test::rect(-12, -12, 12, 12)};
+      const int holes = 1 + static_cast<int>(3 * rnd());
+      for (int h = 0; h < holes; ++h) {
+        const int tips[] = {1, 3, 4, 5};  // not 2: reversed, its loop would turn the plate's way
+        const int m = 4 + static_cast<int>(6 * rnd());
+        const double r0 = 1 + 3 * rnd(), r1 = 0.2 + 0.8 * rnd();
+        const int tip = tips[static_cast<int>(4 * rnd())];
+        const double len = std::pow(10, -3 + 2.5 * rnd()), w = std::pow(10, -4 + 3 * rnd());
+        geo::Ring hole = star(m, r0, r1, 1, tip, len, w);
+        const geo::Point at = pt(-6 + 12 * (h % 2), -6 + 12 * (h / 2));
+        for (auto& q : hole) q.X += at.X, q.Y += at.Y;
+        ClipperLib::ReversePath(hole);
+        plate.push_back(hole);
+      }
+      out.push_back({"plate with star holes", plate});
     } else {  // random polygons, united (self-crossings become touching rings)
       geo::Ring r;
       const int m = 5 + static_cast<int>(20 * rnd());
