@@ -671,9 +671,12 @@ Rings buffer_loops(const Rings& loops, double mm) {
   // shrunk lies within the grown). Two of our offsets, which mostly skip the union, instead of
   // Clipper's line offset, which unites both sides of every loop.
   Rings out, odd;
+  geo::Ring unused;
   for (const geo::Ring& loop : loops) {
-    if (loop.size() < 3 || ClipperLib::Area(loop) == 0) {
-      odd.push_back(loop);  // no region: a line or a point
+    // No region (a line or a point), or a spike of no width, which the offsets leave out of a
+    // region but a bead following the loop goes out along and back: Clipper's line offset.
+    if (loop.size() < 3 || ClipperLib::Area(loop) == 0 || without_spikes(loop, unused)) {
+      odd.push_back(loop);
       continue;
     }
     Rings r{loop};
