@@ -502,12 +502,15 @@ bool without_spikes(const geo::Ring& ring, geo::Ring& out) {
   if (n < 3) return false;
   bool any = false;
   const geo::Point *a = &ring[n - 2], *v = &ring[n - 1];
+  double ex = double(v->X - a->X), ey = double(v->Y - a->Y);  // the edge into v
   for (const geo::Point& b : ring) {
-    if (*v == b || turns_back(*a, *v, b)) {
+    const coord_t fx = b.X - v->X, fy = b.Y - v->Y;
+    const double gx = double(fx), gy = double(fy);
+    if ((fx == 0 && fy == 0) || (ex * gx + ey * gy < 0 && turns_back(*a, *v, b))) {
       any = true;
       break;
     }
-    a = v, v = &b;
+    a = v, v = &b, ex = gx, ey = gy;
   }
   if (!any) return false;
   geo::Ring s;
