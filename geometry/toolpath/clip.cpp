@@ -21,6 +21,9 @@ __extension__ typedef __int128 Wide;  // exact cross products of coordinates
 // and a quarter on the bunny: 160 ms, 12 ms with this). Shrinking is left exact: a simplified
 // sliver can turn inside out and shrink into a spurious bead.
 constexpr geo::coord_t kInputTolerance = 500;  // 0.5 µm
+// simplify() for an input grown, less the choices that would make the ring cross itself where it
+// turns back (defined below dp()).
+geo::Ring simplify_input(const geo::Ring& ring, geo::coord_t tol);
 
 Rings boolean(const Rings& a, const Rings& b, ClipperLib::ClipType op) {
   Rings out;
@@ -480,6 +483,98 @@ bool as_is(Rings raw, Rings& out) {
   return false;
 }
 
+// Whether `v`, between `a` and `b`, is the end of a spike of no width: the ring goes back from it
+// along the line it came by (exact test).
+bool turns_back(const geo::Point& a, const geo::Point& v, const geo::Point& b) {
+  // Going back along a line, the dot product is minus the lengths' product: its sign in doubles
+  // is exact there, and rules out nearly every vertex before the exact test.
+  if (double(v.X - a.X) * double(b.X - v.X) + double(v.Y - a.Y) * double(b.Y - v.Y) >= 0) return false;
+  return Wide(v.X - a.X) * Wide(b.Y - v.Y) == Wide(v.Y - a.Y) * Wide(b.X - v.X);
+}
+
+// `ring` less its spikes of no width (out along a line and back along it: no point of the region
+// lies on either side, so the offset has nothing there; the curves of both Clipper's offset and
+// ours went round them, growing each into a stadium, and shrinking opened one pointing in into a
+// channel) and repeated vertices, in `out`; false (and `out` untouched) when it has none, or when
+// nothing with an area would be left (a ring that is a line is grown as its line).
+bool without_spikes(const geo::Ring& ring, geo::Ring& out) {
+  const size_t n = ring.size();
+  if (n < 3) return false;
+  bool any = false;
+  const geo::Point *a = &ring[n - 2], *v = &ring[n - 1];
+  double ex = double(v->X - a->X), ey = double(v->Y - a->Y);  // the edge into v
+  for (const geo::Point& b : ring) {
+    const coord_t fx = b.X - v->X, fy = b.Y - v->Y;
+    const double gx = double(fx), gy = double(fy);
+    if ((fx == 0 && fy == 0) || (ex * gx + ey * gy < 0 && turns_back(*a, *v, b))) {
+      any = true;
+      break;
+    }
+    a = v, v = &b, ex = gx, ey = gy;
+  }
+  if (!any) return false;
+  geo::Ring s;
+  s.reserve(n);
+  for (const geo::Point& q : ring) {
+    if (!s.empty() && s.back() == q) continue;
+    bool dup = false;
+    while (s.size() >= 2 && turns_back(s[s.size() - 2], s.back(), q)) {
+      s.pop_back();
+      if (s.back() == q) {
+        dup = true;
+        break;
+      }
+    }
+    if (!dup) s.push_back(q);
+  }
+  // Where the ring closes.
+  while (s.size() >= 3) {
+    if (s.back() == s.front() || turns_back(s[s.size() - 2], s.back(), s.front()))
+      s.pop_back();
+    else if (turns_back(s.back(), s[0], s[1]))
+      s.erase(s.begin());
+    else
+      break;
+  }
+  if (s.size() < 3 || ClipperLib::Area(s) == 0) return false;
+  out = std::move(s);
+  return true;
+}
+
+// Whether a ring of the trimmed curve `out` is no part of the offset: its first vertex lies
+// closer than `reach` units to an edge of `region` (every vertex of the offset lies
+// the distance from the region's border, to the arcs' tolerance). Where the trimmed curve is
+// simple and nested as a region's, a loop left by segments that cross where none of them is on
+// the offset still can be: a star with arms narrower than twice the distance, shrunk, kept a
+// triangle of 0.2 mm² where Clipper's offset and the exact one are empty.
+bool off_the_offset(const Rings& out, const std::vector<const geo::Ring*>& region, double reach) {
+  if (reach <= 0) return false;
+  const double r2 = reach * reach;
+  const coord_t rc = static_cast<coord_t>(reach);
+  for (const geo::Ring& o : out) {
+    {
+      const geo::Point* q = &o[0];
+      const double qx = double(q->X), qy = double(q->Y);
+      const coord_t y0 = q->Y - rc, y1 = q->Y + rc, x0 = q->X - rc, x1 = q->X + rc;
+      for (const geo::Ring* rp : region) {
+        const geo::Ring& r = *rp;
+        for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+          const geo::Point &pa = r[j], &pb = r[i];
+          if ((pa.Y < y0 && pb.Y < y0) || (pa.Y > y1 && pb.Y > y1) || (pa.X < x0 && pb.X < x0) ||
+              (pa.X > x1 && pb.X > x1))
+            continue;
+          const double ax = double(pa.X), ay = double(pa.Y), bx = double(pb.X), by = double(pb.Y);
+          const double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
+          const double t = l2 > 0 ? std::clamp(((qx - ax) * ex + (qy - ay) * ey) / l2, 0.0, 1.0) : 0.0;
+          const double dx = ax + t * ex - qx, dy = ay + t * ey - qy;
+          if (dx * dx + dy * dy < r2) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 Rings offset_with(const Rings& region, double mm, double arc_tolerance, bool* as_built = nullptr) {
   if (as_built) *as_built = false;
   Rings out;
@@ -508,18 +603,27 @@ Rings offset_with(const Rings& region, double mm, double arc_tolerance, bool* as
     // Most offsets of real outlines, trimmed where moved edges overlap, are simple curves: they
     // are the offset, no union needed. Anything else (a trim given up, a crossing, a hole, rings
     // inside others) is built again with detours for the union, as Clipper's offset does.
+    // The rings less their spikes of no width (copies only where there are some).
+    Rings fixed(region.size());
+    std::vector<const geo::Ring*> rings(region.size());
+    for (size_t i = 0; i < region.size(); ++i) rings[i] = without_spikes(region[i], fixed[i]) ? &fixed[i] : &region[i];
     for (int pass = 0; pass < 2; ++pass) {
       const bool trim = pass == 0;
       bool trimmed = true;
       raw.clear();
-      for (const auto& r : region) {
-        geo::Ring clean = delta > 0 ? simplify(r, kInputTolerance) : r;
+      for (const geo::Ring* rp : rings) {
+        const geo::Ring& r = *rp;
+        geo::Ring clean = delta > 0 ? simplify_input(r, kInputTolerance) : r;
         if (clean.empty()) clean = r;
         if (flip) std::reverse(clean.begin(), clean.end());
         raw_offset(clean, delta, steps_per_rad, 0.2 * tol, raw, trim, trimmed);
         if (!trimmed) break;
       }
       if (trim && trimmed && !raw.empty() && as_is(std::move(raw), out)) {  // raw is built again below
+        if (off_the_offset(out, rings, ad - 2.5 * tol - 2000)) {
+          out.clear();
+          continue;
+        }
         if (as_built) *as_built = true;
         return out;
       }
@@ -570,9 +674,12 @@ Rings buffer_loops(const Rings& loops, double mm) {
   // shrunk lies within the grown). Two of our offsets, which mostly skip the union, instead of
   // Clipper's line offset, which unites both sides of every loop.
   Rings out, odd;
+  geo::Ring unused;
   for (const geo::Ring& loop : loops) {
-    if (loop.size() < 3 || ClipperLib::Area(loop) == 0) {
-      odd.push_back(loop);  // no region: a line or a point
+    // No region (a line or a point), or a spike of no width, which the offsets leave out of a
+    // region but a bead following the loop goes out along and back: Clipper's line offset.
+    if (loop.size() < 3 || ClipperLib::Area(loop) == 0 || without_spikes(loop, unused)) {
+      odd.push_back(loop);
       continue;
     }
     Rings r{loop};
@@ -673,10 +780,11 @@ void dp(const geo::Ring& pts, size_t i, size_t j, double tol2, std::vector<char>
 }
 }  // namespace
 
-geo::Ring simplify(const geo::Ring& ring, coord_t tol) {
-  size_t n = ring.size();
-  if (n < 4 || tol <= 0) return ring;
-  // Split the loop at vertex 0 and the vertex farthest from it.
+namespace {
+// Douglas-Peucker's choice of vertices for `ring` (n >= 4): the loop split at vertex 0 and the
+// vertex farthest from it.
+std::vector<char> simplified(const geo::Ring& ring, coord_t tol) {
+  const size_t n = ring.size();
   size_t far = 0;
   double best = -1;
   for (size_t k = 1; k < n; ++k) {
@@ -689,13 +797,75 @@ geo::Ring simplify(const geo::Ring& ring, coord_t tol) {
   double tol2 = double(tol) * double(tol);
   dp(ring, 0, far, tol2, keep);
   dp(ring, far, n, tol2, keep);
+  return keep;
+}
+
+geo::Ring kept(const geo::Ring& ring, const std::vector<char>& keep) {
   geo::Ring out;
-  out.reserve(n);
-  for (size_t k = 0; k < n; ++k)
+  out.reserve(ring.size());
+  for (size_t k = 0; k < ring.size(); ++k)
     if (keep[k]) out.push_back(ring[k]);
   if (out.size() < 3) return {};
   return out;
 }
+}  // namespace
+
+geo::Ring simplify(const geo::Ring& ring, coord_t tol) {
+  if (ring.size() < 4 || tol <= 0) return ring;
+  return kept(ring, simplified(ring, tol));
+}
+
+namespace {
+// Douglas-Peucker drops a vertex within `tol` of its chord whatever the ring does next to it. Next
+// to a spike, a hairline loop or any turn back, that can make the ring cross itself: a star's tip
+// going out 3 µm and back, its first tip vertex 0.4 µm off the chord to the spike's end, became a
+// ring that runs past the tip, turns back, and crosses its own incoming edge, turning round the
+// tip clockwise. Every join there is then a detour through the vertex (no round cap), and the
+// union of the grown curve missed the tip's cap, 3 mm² of it grown by 1.5 mm. Where the ring turns
+// back by more than 120° to within 4 tolerances of where it came from, the vertex and its
+// neighbours stay, so the edges next to the turn are the ring's own (where Douglas-Peucker keeps
+// them all anyway, its result as it is: the same G-code on every model we slice).
+geo::Ring simplify_input(const geo::Ring& ring, coord_t tol) {
+  const size_t n = ring.size();
+  if (n < 4 || tol <= 0) return ring;
+  std::vector<char> keep = simplified(ring, tol);
+  auto next = [n](size_t i) { return i + 1 < n ? i + 1 : 0; };
+  auto prev = [n](size_t i) { return i > 0 ? i - 1 : n - 1; };
+  auto turns_back_near = [&](size_t i) {
+    const geo::Point &a = ring[prev(i)], &v = ring[i], &b = ring[next(i)];
+    if (v == a || v == b) return true;
+    const double cx = double(b.X - a.X), cy = double(b.Y - a.Y);
+    if (cx * cx + cy * cy >= 16.0 * double(tol) * double(tol)) return false;
+    const double ax = double(v.X - a.X), ay = double(v.Y - a.Y), bx = double(b.X - v.X), by = double(b.Y - v.Y);
+    const double dot = ax * bx + ay * by;
+    return dot < 0 && 4 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);  // by more than 120°
+  };
+  // Only a dropped vertex can matter: it or a neighbour turning back near it.
+  bool dropped = false;
+  for (size_t k = 0; k < n && !dropped; ++k)
+    dropped = !keep[k] && (turns_back_near(prev(k)) || turns_back_near(k) || turns_back_near(next(k)));
+  if (!dropped) return kept(ring, keep);
+  std::vector<char> pin(n, 0);
+  for (size_t i = 0; i < n; ++i)
+    if (turns_back_near(i)) pin[prev(i)] = pin[i] = pin[next(i)] = 1;
+  // Douglas-Peucker between consecutive pinned vertices, from the first (kept in the ring's order).
+  size_t first = 0;
+  while (!pin[first]) ++first;
+  geo::Ring rot(ring.begin() + static_cast<std::ptrdiff_t>(first), ring.end());
+  rot.insert(rot.end(), ring.begin(), ring.begin() + static_cast<std::ptrdiff_t>(first));
+  std::vector<char> rkeep(n, 0);
+  const double tol2 = double(tol) * double(tol);
+  size_t from = 0;
+  for (size_t k = 1; k <= n; ++k) {
+    if (k < n && !pin[(k + first) % n]) continue;
+    rkeep[from] = 1;
+    dp(rot, from, k, tol2, rkeep);
+    from = k;
+  }
+  for (size_t k = 0; k < n; ++k) keep[(k + first) % n] = rkeep[k];
+  return kept(ring, keep);
+}
+}  // namespace
 
 Rings simplify(const Rings& rings, coord_t tol) {
   Rings out;

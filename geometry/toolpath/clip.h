@@ -7,7 +7,11 @@
 namespace tranche::toolpath {
 
 // Grows (mm > 0) or shrinks (mm < 0) closed regions with round joins: the exact Minkowski
-// sum/difference with a disc, up to the arc tolerance (5 µm).
+// sum/difference with a disc, up to the arc tolerance (5 µm). The rings are a region as a union
+// leaves it (they may touch at vertices); a spike of no width is no part of it. Not the exact
+// offset (as with Clipper's offset): a ring crossing itself, a loop turning against its ring's way,
+// a slit of no width between edges that do not follow each other (a keyhole's: shrinking opens
+// it). Unite such rings first.
 geo::Rings offset(const geo::Rings& region, double mm);
 // The same, and whether it is the offset curve as built, trimmed where it would cross itself,
 // with no union to clean it (for tests and measurements).

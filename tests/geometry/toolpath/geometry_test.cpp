@@ -570,6 +570,13 @@ TEST_CASE("clip: buffer_loops is the area within a distance of each loop, as Cli
   const geo::Ring line{geo::to_point(0, 0), geo::to_point(5, 0), geo::to_point(10, 0)};
   CHECK(area_mm2(toolpath::union_of(toolpath::buffer_loops({line}, 0.5))) ==
         Approx(2 * 10 * 0.5 + M_PI * 0.25).epsilon(1e-3));
+  // A loop going out 1 mm along a spike and back: the bead does, so its band has the spike's
+  // stadium (offsets leave a spike of no width out of a region; the band is not a region's).
+  const geo::Ring spiked{geo::to_point(0, 0),  geo::to_point(10, 0), geo::to_point(10, 5), geo::to_point(11, 5),
+                         geo::to_point(10, 5), geo::to_point(10, 10), geo::to_point(0, 10)};
+  const double square_band = 10.5 * 10.5 - 9.5 * 9.5 - 4 * (1 - M_PI / 4) * 0.25 * 0.25;
+  CHECK(area_mm2(toolpath::union_of(toolpath::buffer_loops({spiked}, 0.25))) ==
+        Approx(square_band + 0.75 * 0.5 + M_PI * 0.25 * 0.25 / 2).epsilon(1e-3));
 }
 
 
