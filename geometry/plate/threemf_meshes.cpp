@@ -297,30 +297,52 @@ __attribute__((target("avx2"))) inline bool spaces_between(const char* p, int e,
 // the spaces after it are loaded with.
 constexpr ptrdiff_t kPlainBytes = 96;
 
-// The value of the n (1 to 8) bytes at the start of `chunk` when they are all decimal digits
-// (digits_value()); false when one is not.
-inline bool digits_of(uint64_t chunk, int n, uint32_t& out) {
-  const uint64_t v = (chunk - 0x3030303030303030ull) << (8 * (8 - n));  // the n bytes at the top
-  // A byte b is a digit when b < 10: neither b nor b + 0x76 has its high bit set (a carry out of
-  // a byte that is no digit is flagged there already).
-  if (((v | (v + 0x7676767676767676ull)) & 0x8080808080808080ull) != 0) return false;
-  out = digits_value(chunk, n);
-  return true;
-}
-
 // Elements are read in batches, appended to the caller's vector after each: no call within the
 // loop that reads them.
 constexpr int kBatch = 256;
 
+// The values of `count` indices (rounded up to a multiple of 4; the values past `count` are
+// read too) of at most 8 digits each: the 8 bytes at each value's start in `chunks`, shifted left
+// by `shifts` bits (8 for each byte past its n digits), four at a time with AVX2; the values go
+// to `out`, 4 bytes each. The index of the first value that is not all decimal digits, or `count`.
+__attribute__((target("avx2"))) int indices_avx2(const uint64_t* chunks, const uint64_t* shifts, int count,
+                                                 char* out) {
+  const __m256i zero = _mm256_setzero_si256();
+  for (int i = 0; i < count; i += 4) {
+    const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(chunks + i));
+    const __m256i s = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shifts + i));
+    // Each lane: its digits' values at the top, most significant first, zeros before them.
+    const __m256i d = _mm256_sllv_epi64(_mm256_sub_epi8(c, _mm256_set1_epi8('0')), s);
+    const unsigned ok = static_cast<unsigned>(
+        _mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(d, _mm256_set1_epi8(9)), zero)));
+    if (ok != 0xFFFFFFFFu) return std::min(count, i + std::countr_zero(~ok) / 8);
+    const __m256i pairs = _mm256_maddubs_epi16(d, _mm256_set1_epi16(0x010A));       // 10a + b
+    const __m256i fours = _mm256_madd_epi16(pairs, _mm256_set1_epi32(0x00010064));  // 100a + b
+    // The lane's first four digits times 10^4 plus its last four.
+    const __m256i eights =
+        _mm256_add_epi64(_mm256_mul_epu32(fours, _mm256_set1_epi64x(10000)), _mm256_srli_epi64(fours, 32));
+    const __m256i packed = _mm256_permutevar8x32_epi32(eights, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i), _mm256_castsi256_si128(packed));
+  }
+  return count;
+}
+
 // Triangles in the plain form from p on, begun before `limit`, with kPlainBytes before `end`: their
 // indices appended to `out`; where the first element not read begins (or the spaces before it).
+// A batch of elements is found first, each value's bytes noted; then their values are read at
+// once (indices_avx2()), and the batch ends before the first element holding a value that is no
+// number.
 __attribute__((target("avx2"))) const char* plain_triangles(const char* p, const char* limit, const char* end,
                                                             std::vector<std::array<uint32_t, 3>>& out) {
   static constexpr char kHead[] = "<triangle v1=\"";  // 14 bytes: 0-7 and 6-13
   constexpr uint64_t head0 = bytes_of(kHead), head1 = bytes_of(kHead, 6);
   constexpr uint64_t kSix = (uint64_t{1} << 48) - 1;
   constexpr uint64_t v2 = bytes_of("\" v2=\"") & kSix, v3 = bytes_of("\" v3=\"") & kSix;
-  std::array<uint32_t, 3> batch[kBatch];
+  static_assert(sizeof(std::array<uint32_t, 3>) == 12);
+  constexpr int kValues = 3 * kBatch + 4;  // read four at a time
+  uint64_t chunks[kValues], shifts[kValues];
+  const char* starts[kBatch];
+  std::array<uint32_t, 3> batch[kBatch + 2];
   for (bool more = true; more;) {
     int n = 0;
     for (; n < kBatch; ++n) {
@@ -337,10 +359,14 @@ __attribute__((target("avx2"))) const char* plain_triangles(const char* p, const
           (load8(p + q[0]) & kSix) != v2 || (load8(p + q[2]) & kSix) != v3)
         break;
       const int e = tag_end(p, q[4]);
-      if (!e || !digits_of(load8(p + 14), n1, batch[n][0]) ||
-          !digits_of(load8(p + q[1] + 1), n2, batch[n][1]) ||
-          !digits_of(load8(p + q[3] + 1), n3, batch[n][2]))
-        break;
+      if (!e) break;
+      starts[n] = p;
+      chunks[3 * n] = load8(p + 14);
+      chunks[3 * n + 1] = load8(p + q[1] + 1);
+      chunks[3 * n + 2] = load8(p + q[3] + 1);
+      shifts[3 * n] = 8 * (8 - n1);
+      shifts[3 * n + 1] = 8 * (8 - n2);
+      shifts[3 * n + 2] = 8 * (8 - n3);
       if (!spaces_between(p, e, next)) {  // the caller skips the spaces
         p += e;
         ++n;
@@ -348,6 +374,16 @@ __attribute__((target("avx2"))) const char* plain_triangles(const char* p, const
       }
       p += next;
       more = true;
+    }
+    for (int i = 3 * n; i < 3 * n + 4; ++i) {  // a whole last four: zeros
+      chunks[i] = 0x3030303030303030ull;
+      shifts[i] = 0;
+    }
+    const int first_bad = indices_avx2(chunks, shifts, 3 * n, reinterpret_cast<char*>(batch)) / 3;
+    if (first_bad < n) {  // that element is read attribute after attribute (which says what is wrong)
+      n = first_bad;
+      p = starts[first_bad];
+      more = false;
     }
     out.insert(out.end(), batch, batch + n);
   }
