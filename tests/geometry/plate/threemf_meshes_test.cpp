@@ -871,3 +871,30 @@ TEST_CASE("3mf meshes: indices of every length read whole with AVX2 are those st
     CHECK(wrong == 0);
   }
 }
+
+TEST_CASE("3mf meshes: a mesh whose arrays take huge pages is read as the whole text reads it") {
+  // 116 000 vertices and twice as many triangles: each of the mesh's arrays over 2 MiB, so the
+  // stream reserves them rounded to whole 2 MiB of mapped memory (huge pages for what they fill);
+  // the meshes are those the whole text gives, and the room beyond them is never more than 2 MiB.
+  const std::string text =
+      model("<object id=\"1\">" + torus_mesh(482) + "</object>", "<item objectid=\"1\"/>");
+  const threemf::SplitModel whole = threemf::split_meshes(text);
+  const auto c = chunked(text, size_t{1} << 20);
+  REQUIRE(c);
+  REQUIRE(c->meshes.size() == 1);
+  CHECK(same_split(*c, whole));
+  const threemf::MeshData& m = c->meshes.at(1);
+  const size_t vertex_bytes = m.vertices.size() * sizeof(m.vertices[0]);
+  const size_t triangle_bytes = m.triangles.size() * sizeof(m.triangles[0]);
+  REQUIRE(vertex_bytes > (size_t{2} << 20));
+  REQUIRE(triangle_bytes > (size_t{2} << 20));
+  // The room and malloc's header (64 bytes) fill whole 2 MiB but for less than one element.
+  constexpr size_t kHuge = size_t{2} << 20;
+  const auto whole_huge_pages = [](size_t room, size_t element) {
+    return (room + 64) % kHuge == 0 || kHuge - (room + 64) % kHuge < element;
+  };
+  CHECK(whole_huge_pages(m.vertices.capacity() * sizeof(m.vertices[0]), sizeof(m.vertices[0])));
+  CHECK(whole_huge_pages(m.triangles.capacity() * sizeof(m.triangles[0]), sizeof(m.triangles[0])));
+  CHECK(m.vertices.capacity() * sizeof(m.vertices[0]) < vertex_bytes + kHuge);
+  CHECK(m.triangles.capacity() * sizeof(m.triangles[0]) < triangle_bytes + kHuge + 12);
+}
