@@ -969,8 +969,8 @@ bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Bad& bad,
 // touched, and those past their last whole 2 MiB stay small, so the memory used is what the
 // elements need. As malloc has written its header into the first 2 MiB already (a small page
 // there, which a fault would not replace), those 2 MiB are made huge pages at once
-// (MADV_COLLAPSE, Linux 6.1 on). Elsewhere, or when the system has no huge page to give, the
-// pages are ordinary ones: only the time differs.
+// (MADV_COLLAPSE, Linux 6.1 on). Elsewhere, or when the system has no huge page to give, or when
+// malloc gives memory already in use before, the pages are ordinary ones: only the time differs.
 template <class T>
 void reserve_huge(std::vector<T>& v, size_t n) {
   constexpr size_t kHuge = size_t{2} << 20, kHeader = 64;
@@ -987,7 +987,10 @@ void reserve_huge(std::vector<T>& v, size_t n) {
   // before them); else the next one.
   const uintptr_t from = at % kHuge <= kHeader ? at - at % kHuge : at - at % kHuge + kHuge;
   const uintptr_t to = (at + bytes) - (at + bytes) % kHuge;
-  if (to > from) {
+  // Only memory not yet in use: malloc gives memory freed before again (a process that loads again
+  // and again), whose pages are there already; making them huge would copy them.
+  unsigned char resident = 1;
+  if (to > from && mincore(reinterpret_cast<void*>(to - 4096), 4096, &resident) == 0 && !(resident & 1)) {
     madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);  // hints: no error to see
     madvise(reinterpret_cast<void*>(from), to - from, kCollapse);
   }
