@@ -960,37 +960,45 @@ bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Bad& bad,
   }
 }
 
-// Room for n elements in `v` (empty), in huge pages for the whole 2 MiB pages they will fill: a
-// fresh process then takes one page fault for each 2 MiB of a mesh's arrays instead of 512 (the
-// 3MF's meshes: 10 000 page faults fewer, 0.015 s of CPU, in bench_plate's load). From 2 MiB on
-// the room is rounded up so that malloc maps memory of its own whose length is a whole number of
-// 2 MiB (its header fits in the 64 bytes left), which the kernel places at a 2 MiB boundary
-// (Linux 6.7 on). The rounding is address space only: the pages past the n elements are never
-// touched, and those past their last whole 2 MiB stay small, so the memory used is what the
-// elements need. As malloc has written its header into the first 2 MiB already (a small page
-// there, which a fault would not replace), those 2 MiB are made huge pages at once
-// (MADV_COLLAPSE, Linux 6.1 on). Elsewhere, or when the system has no huge page to give, or when
-// malloc gives memory already in use before, the pages are ordinary ones: only the time differs.
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+// Whether the page holding `p` is not in memory yet (memory malloc has just mapped, never used).
+bool fresh_page(const void* p) {
+  const uintptr_t page = reinterpret_cast<uintptr_t>(p) & ~uintptr_t{4095};
+  unsigned char resident = 1;
+  return mincore(reinterpret_cast<void*>(page), 4096, &resident) == 0 && !(resident & 1);
+}
+#endif
+
+// Room for n elements in `v` (empty), in huge pages for the whole 2 MiB pages they will fill when
+// the room is memory malloc has just mapped: a fresh process then takes one page fault for each
+// 2 MiB of a mesh's arrays instead of 512 (the 3MF's meshes in bench_plate's load: 10 000 page
+// faults fewer, 0.015 s of CPU). Such room is taken again, rounded up so that malloc maps memory
+// of its own whose length is a whole number of 2 MiB (its header fits in the 64 bytes left), which
+// the kernel places at a 2 MiB boundary (Linux 6.7 on). The rounding is address space only: the
+// pages past the n elements are never touched, and those past their last whole 2 MiB stay small,
+// so the memory used is what the elements need. As malloc has written its header into the first
+// 2 MiB already (a small page there, which a fault would not replace), those 2 MiB are made huge
+// pages at once (MADV_COLLAPSE, Linux 6.1 on). Room malloc had in use before (a process that
+// loads again and again) is kept as it is: its pages are there already. Elsewhere, or when the
+// system has no huge page to give, the pages are ordinary ones: only the time differs.
 template <class T>
 void reserve_huge(std::vector<T>& v, size_t n) {
-  constexpr size_t kHuge = size_t{2} << 20, kHeader = 64;
-  const size_t bytes = n * sizeof(T);
-  if (bytes < kHuge) {
-    v.reserve(n);
-    return;
-  }
-  v.reserve(((bytes + kHeader + kHuge - 1) / kHuge * kHuge - kHeader) / sizeof(T));
+  v.reserve(n);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr size_t kHuge = size_t{2} << 20, kHeader = 64;
   constexpr int kCollapse = 25;  // MADV_COLLAPSE (asm-generic/mman-common.h); older kernels refuse it
+  const size_t bytes = n * sizeof(T);
+  // (Its middle: malloc writes its headers at either end.)
+  if (bytes < kHuge || !fresh_page(reinterpret_cast<const char*>(v.data()) + bytes / 2)) return;
+  std::vector<T> rounded;
+  rounded.reserve(((bytes + kHeader + kHuge - 1) / kHuge * kHuge - kHeader) / sizeof(T));
+  v.swap(rounded);  // the first room is let go untouched
   const uintptr_t at = reinterpret_cast<uintptr_t>(v.data());
   // The 2 MiB page the elements begin in, when the mapping begins there (only malloc's header
   // before them); else the next one.
   const uintptr_t from = at % kHuge <= kHeader ? at - at % kHuge : at - at % kHuge + kHuge;
   const uintptr_t to = (at + bytes) - (at + bytes) % kHuge;
-  // Only memory not yet in use: malloc gives memory freed before again (a process that loads again
-  // and again), whose pages are there already; making them huge would copy them.
-  unsigned char resident = 1;
-  if (to > from && mincore(reinterpret_cast<void*>(to - 4096), 4096, &resident) == 0 && !(resident & 1)) {
+  if (to > from && fresh_page(reinterpret_cast<void*>(to - kHuge / 2))) {
     madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);  // hints: no error to see
     madvise(reinterpret_cast<void*>(from), to - from, kCollapse);
   }
