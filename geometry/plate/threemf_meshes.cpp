@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <type_traits>
 
 #include <sys/mman.h>
@@ -991,7 +992,11 @@ void reserve_huge(std::vector<T>& v, size_t n) {
   // (Its middle: malloc writes its headers at either end.)
   if (bytes < kHuge || !fresh_page(reinterpret_cast<const char*>(v.data()) + bytes / 2)) return;
   std::vector<T> rounded;
-  rounded.reserve(((bytes + kHeader + kHuge - 1) / kHuge * kHuge - kHeader) / sizeof(T));
+  try {
+    rounded.reserve(((bytes + kHeader + kHuge - 1) / kHuge * kHuge - kHeader) / sizeof(T));
+  } catch (const std::bad_alloc&) {  // no address space for the rounding (a limit on it): the room as it is
+    return;
+  }
   v.swap(rounded);  // the first room is let go untouched
   const uintptr_t at = reinterpret_cast<uintptr_t>(v.data());
   // The 2 MiB page the elements begin in, when the mapping begins there (only malloc's header
