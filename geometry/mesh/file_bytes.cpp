@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <cstring>
 #include <new>
@@ -17,7 +19,25 @@ Error no_memory(const std::string& path, uint64_t bytes) {
                                  size_text(bytes))};
 }
 
-Result<FileBytes> read_regular(InputFile& f, const HeadCheck& check_head) {
+constexpr uint64_t kHugeFrom = uint64_t{4} << 20;  // FileMemory::kHugePages from this size on
+
+// Uninitialised room for `size` bytes (at least 1) where `memory` says; null when there is no memory.
+std::unique_ptr<char[], FreeFileBytes> room(uint64_t size, FileMemory memory) {
+#ifdef MADV_HUGEPAGE
+  if (memory == FileMemory::kHugePages && size >= kHugeFrom) {
+    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return {};
+    madvise(p, size, MADV_HUGEPAGE);  // a hint: without huge pages it is ordinary memory
+    return std::unique_ptr<char[], FreeFileBytes>(static_cast<char*>(p), FreeFileBytes{size});
+  }
+#else
+  (void)memory;
+#endif
+  return std::unique_ptr<char[], FreeFileBytes>(new (std::nothrow) char[std::max<uint64_t>(size, 1)]);
+}
+
+Result<FileBytes> read_regular(InputFile& f, const HeadCheck& check_head,
+                               const std::function<FileMemory()>& memory) {
   uint64_t size = f.size();
   if (check_head) {
     char head[kHeadBytes];
@@ -28,7 +48,7 @@ Result<FileBytes> read_regular(InputFile& f, const HeadCheck& check_head) {
     size = std::min(size, *want);
   }
   FileBytes b;
-  b.data.reset(new (std::nothrow) char[std::max<uint64_t>(size, 1)]);
+  b.data = room(size, memory ? memory() : FileMemory::kHeap);
   if (!b.data) return no_memory(f.path(), size);
   while (b.size < size) {
     auto got = f.read(b.data.get() + b.size, static_cast<size_t>(size) - b.size);
@@ -43,7 +63,7 @@ Result<FileBytes> read_regular(InputFile& f, const HeadCheck& check_head) {
 Result<FileBytes> read_stream(InputFile& f, const HeadCheck& check_head) {
   FileBytes b;
   size_t capacity = size_t{1} << 20;
-  b.data.reset(new (std::nothrow) char[capacity]);
+  b.data = room(capacity, FileMemory::kHeap);
   if (!b.data) return no_memory(f.path(), capacity);
   bool checked = !check_head;
   uint64_t want = UINT64_MAX;
@@ -55,7 +75,7 @@ Result<FileBytes> read_stream(InputFile& f, const HeadCheck& check_head) {
     if (b.size == capacity) {
       // One byte past the bound is enough for InputFile to refuse the stream.
       const size_t grown = static_cast<size_t>(std::min<uint64_t>(uint64_t{capacity} * 2, kModelInput.max_bytes + 1));
-      auto bigger = std::unique_ptr<char[]>(new (std::nothrow) char[grown]);
+      auto bigger = room(grown, FileMemory::kHeap);
       if (!bigger) return no_memory(f.path(), grown);
       std::memcpy(bigger.get(), b.data.get(), b.size);
       b.data = std::move(bigger);
@@ -76,10 +96,18 @@ Result<FileBytes> read_stream(InputFile& f, const HeadCheck& check_head) {
 
 }  // namespace
 
-Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head) {
+void FreeFileBytes::operator()(char* p) const {
+  if (mapped)
+    munmap(p, mapped);
+  else
+    delete[] p;
+}
+
+Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head,
+                                  const std::function<FileMemory()>& memory) {
   auto f = InputFile::open(path, kModelInput);
   if (!f) return f.error();
-  return f->regular() ? read_regular(*f, check_head) : read_stream(*f, check_head);
+  return f->regular() ? read_regular(*f, check_head, memory) : read_stream(*f, check_head);
 }
 
 }  // namespace tranche::geo

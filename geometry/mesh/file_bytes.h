@@ -17,11 +17,23 @@
 
 namespace tranche::geo {
 
+// Frees a file's bytes: delete[], or munmap of `mapped` bytes (memory of their own, FileMemory::kHugePages).
+struct FreeFileBytes {
+  size_t mapped = 0;
+  void operator()(char* p) const;
+};
+
 struct FileBytes {
-  std::unique_ptr<char[]> data;
+  std::unique_ptr<char[], FreeFileBytes> data;
   size_t size = 0;
   std::string_view view() const { return {data.get(), size}; }
 };
+
+// Where a regular file's bytes are kept: on the heap, or, from 4 MiB on, in memory mapped for
+// them alone, in huge pages where the system grants them (a few page faults instead of one per
+// 4 KiB, which a fresh process pays in full; but never memory the heap has freed before, which a
+// loader reading file after file reuses: the STL loader keeps the heap).
+enum class FileMemory { kHeap, kHugePages };
 
 // Sees the first bytes of a file (up to kHeadBytes; all of it when shorter) and its size (regular
 // files; nothing for a stream), and returns how many bytes are worth reading (the rest is left
@@ -29,6 +41,9 @@ struct FileBytes {
 using HeadCheck = std::function<Result<uint64_t>(std::string_view head, std::optional<uint64_t> size)>;
 inline constexpr size_t kHeadBytes = 4096;
 
-Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head = {});
+// `memory` (asked after the head check, so that it may depend on what the check saw): where the
+// bytes of a regular file are kept; a stream's are on the heap.
+Result<FileBytes> read_file_bytes(const std::string& path, const HeadCheck& check_head = {},
+                                  const std::function<FileMemory()>& memory = {});
 
 }  // namespace tranche::geo

@@ -73,13 +73,21 @@ Result<std::vector<Object>> parse_model_file(std::string_view bytes, const std::
 }
 
 Result<std::vector<Object>> load_model_file(const std::string& path, Report& report) {
-  // An STL refused from its header (a triangle count its size cannot hold) is never read whole.
-  auto bytes = geo::read_file_bytes(path, [&](std::string_view head, std::optional<uint64_t> size) {
-    const Detected d = detect_format(head, size.value_or(head.size()));
-    // Not an STL, or unsure bytes named .3mf (parse() says what they are in 3MF words): read whole.
-    if (d.format != Format::Stl || (!d.sure && extension(path) == ".3mf")) return Result<uint64_t>(UINT64_MAX);
-    return geo::check_stl_head(head, size, path, report);
-  });
+  // An STL refused from its header (a triangle count its size cannot hold) is never read whole. A
+  // 3MF (a ZIP archive) is kept in huge pages (geo::FileMemory): it is read once, its model part
+  // inflated from it, and a fresh process would fault its pages in one by one.
+  Format format = Format::Other;
+  auto bytes = geo::read_file_bytes(
+      path,
+      [&](std::string_view head, std::optional<uint64_t> size) {
+        const Detected d = detect_format(head, size.value_or(head.size()));
+        format = d.format;
+        // Not an STL, or unsure bytes named .3mf (parse() says what they are in 3MF words): read whole.
+        if (d.format != Format::Stl || (!d.sure && extension(path) == ".3mf"))
+          return Result<uint64_t>(UINT64_MAX);
+        return geo::check_stl_head(head, size, path, report);
+      },
+      [&] { return format == Format::ThreeMf ? geo::FileMemory::kHugePages : geo::FileMemory::kHeap; });
   if (!bytes) return bytes.error();
   if (bytes->size == 0)
     return Error{path, "the file is empty (0 bytes); export the model again or check that it was copied completely"};

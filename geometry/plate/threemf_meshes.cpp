@@ -11,6 +11,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <new>
+#include <type_traits>
+
+#include <sys/mman.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -133,72 +137,307 @@ const char* number(const char* p, const char* end, float& out) {
   return ec == std::errc() ? e : nullptr;
 }
 
-// Whether the scanner reads coordinates with SSSE3 where the CPU has it (allow_simd()).
-std::atomic<bool> simd_allowed{true};
+// The most the scanner may use of the CPU's vector instructions (limit_simd()).
+std::atomic<Simd> simd_limit{Simd::kAvx2};
 
 #if defined(__SSE2__)
+// Coordinates read with SSSE3 (number_ssse3()).
 bool use_ssse3() {
 #if defined(__GNUC__)
   static const bool has = __builtin_cpu_supports("ssse3");
-  return has && simd_allowed.load(std::memory_order_relaxed);
+  return has && simd_limit.load(std::memory_order_relaxed) >= Simd::kSsse3;
 #else
   return false;
 #endif
 }
 
-// number() of a coordinate followed by its closing quote within 16 bytes, with SSSE3 (the byte
-// shuffle): the sign and point taken out, the digits converted at once (pairs, fours, eights),
-// then as number(). The same results as number(), which reads every other form.
+// Plain elements read whole with AVX2 (plain_vertices(), plain_triangles()).
+bool use_avx2() {
+#if defined(__GNUC__)
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("ssse3");
+  return has && simd_limit.load(std::memory_order_relaxed) >= Simd::kAvx2;
+#else
+  return false;
+#endif
+}
+
+// number() of the n bytes (1 to 15) of a coordinate at a, which `x` holds (16 bytes loaded from
+// a), with SSSE3 (the byte shuffle): the sign and point taken out, the digits converted at once
+// (pairs, fours, eights), then as number(); false for the forms it does not read (number() does).
+__attribute__((target("ssse3"))) inline bool decimal_ssse3(__m128i x, const char* a, int n, float& out) {
+  const unsigned in = (1u << n) - 1;  // the value's bytes
+  const int minus = *a == '-';
+  const unsigned dots = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
+  const int point = dots ? std::countr_zero(dots) : n;  // where the point is (n: none)
+  const int whole = point - minus;                      // digits before it
+  const int digits = n - minus - (dots ? 1 : 0);
+  const __m128i d = _mm_sub_epi8(x, _mm_set1_epi8('0'));
+  const unsigned is_digit = static_cast<unsigned>(
+      _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
+  const unsigned need =
+      in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
+  if (whole <= 0 || digits > 15 || (is_digit & need) != need) return false;
+  // Output byte o holds digit t = o - (16 - digits) (from the byte after the sign, skipping the
+  // point); those before the first digit are zeros.
+  const __m128i t = _mm_add_epi8(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                                 _mm_set1_epi8(static_cast<char>(digits - 16)));
+  const __m128i after_point = _mm_cmpgt_epi8(t, _mm_set1_epi8(static_cast<char>(whole - 1)));
+  const __m128i from = _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
+  const __m128i control = _mm_or_si128(from, _mm_cmpgt_epi8(_mm_setzero_si128(), t));  // negative: a zero
+  const __m128i v = _mm_shuffle_epi8(d, control);
+  const __m128i pairs =
+      _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
+  const __m128i fours = _mm_madd_epi16(pairs, _mm_setr_epi16(100, 1, 100, 1, 100, 1, 100, 1));
+  const __m128i packed = _mm_packs_epi32(fours, fours);  // each below 10^4
+  const __m128i eights = _mm_madd_epi16(packed, _mm_setr_epi16(10000, 1, 10000, 1, 10000, 1, 10000, 1));
+  const uint64_t both = static_cast<uint64_t>(_mm_cvtsi128_si64(eights));
+  const uint64_t m = (both & 0xFFFFFFFF) * 100000000 + (both >> 32);
+  static constexpr double kTenth[] = {1e0,  1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+                                      1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+  const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[digits - whole];
+  uint64_t bits;
+  std::memcpy(&bits, &r, sizeof bits);
+  const float f = static_cast<float>(r);
+  constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
+  // Without branches on the value (its sign, a zero), which no predictor guesses; `out` is written
+  // either way (number() writes it again when this gives up).
+  const bool ok = (((bits & kLow) - (kHalf - kNear)) > 2 * kNear) & ((m == 0) | (std::fabs(f) >= FLT_MIN));
+  out = std::bit_cast<float>(std::bit_cast<uint32_t>(f) ^ (static_cast<uint32_t>(minus) << 31));
+  return ok;
+}
+
+// number() of a coordinate followed by its closing quote within 16 bytes, with SSSE3
+// (decimal_ssse3()); the same results as number(), which reads every other form.
 __attribute__((target("ssse3"))) const char* number_ssse3(const char* a, const char* end, float& out) {
   if (end - a < 16) return number(a, end, out);
   const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
   const unsigned quotes = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('"'))));
   const int n = quotes ? std::countr_zero(quotes) : 16;  // up to the closing quote
-  const char* const b = a + n;
-  if (n >= 1 && n <= 15) {
-    const unsigned in = (1u << n) - 1;  // the value's bytes
-    const int minus = *a == '-';
-    const unsigned dots =
-        static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
-    const int point = dots ? std::countr_zero(dots) : n;  // where the point is (n: none)
-    const int whole = point - minus;                      // digits before it
-    const int digits = n - minus - (dots ? 1 : 0);
-    const __m128i d = _mm_sub_epi8(x, _mm_set1_epi8('0'));
-    const unsigned is_digit = static_cast<unsigned>(
-        _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
-    const unsigned need =
-        in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
-    if (whole > 0 && digits <= 15 && (is_digit & need) == need) {
-      // Output byte o holds digit t = o - (16 - digits) (from the byte after the sign, skipping the
-      // point); those before the first digit are zeros.
-      const __m128i t = _mm_add_epi8(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                                     _mm_set1_epi8(static_cast<char>(digits - 16)));
-      const __m128i after_point = _mm_cmpgt_epi8(t, _mm_set1_epi8(static_cast<char>(whole - 1)));
-      const __m128i from =
-          _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
-      const __m128i control = _mm_or_si128(from, _mm_cmpgt_epi8(_mm_setzero_si128(), t));  // negative: a zero
-      const __m128i v = _mm_shuffle_epi8(d, control);
-      const __m128i pairs =
-          _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
-      const __m128i fours = _mm_madd_epi16(pairs, _mm_setr_epi16(100, 1, 100, 1, 100, 1, 100, 1));
-      const __m128i packed = _mm_packs_epi32(fours, fours);  // each below 10^4
-      const __m128i eights = _mm_madd_epi16(packed, _mm_setr_epi16(10000, 1, 10000, 1, 10000, 1, 10000, 1));
-      const uint64_t both = static_cast<uint64_t>(_mm_cvtsi128_si64(eights));
-      const uint64_t m = (both & 0xFFFFFFFF) * 100000000 + (both >> 32);
-      static constexpr double kTenth[] = {1e0,  1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
-                                          1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
-      const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[digits - whole];
-      uint64_t bits;
-      std::memcpy(&bits, &r, sizeof bits);
-      const float f = static_cast<float>(r);
-      constexpr uint64_t kHalf = uint64_t{1} << 28, kLow = (uint64_t{1} << 29) - 1, kNear = 4;  // as number()
-      if (((bits & kLow) - (kHalf - kNear)) > 2 * kNear && (m == 0 || std::fabs(f) >= FLT_MIN)) {
-        out = minus ? -f : f;
-        return b;
-      }
-    }
-  }
+  if (n >= 1 && n <= 15 && decimal_ssse3(x, a, n, out)) return a + n;
   return number(a, end, out);
+}
+
+// The elements of a mesh in the form nearly every writer gives them, `<vertex x="1.5" y="-2"
+// z="0.25" />` and `<triangle v1="0" v2="1" v3="2" />` (or `/>` right after the last value), each
+// read from one look at its 64 bytes with AVX2 (where its quotes and '<' are), then its values
+// converted where they are. The element after it is found from the same look (the next '<', only
+// spaces before it), so that where an element begins does not wait for the reading of the one
+// before (the chain a parse from byte to byte makes), and nothing in the loop branches on a value.
+// Any other form, or an element longer than 64 bytes, is left to the scanner's reading attribute
+// after attribute, which reads these forms to the same values (tested at every level, limit_simd()).
+
+// Bit i of each says whether byte i of the 64 bytes at p is a '"', a '<'.
+struct Block64 {
+  uint64_t quote = 0, open = 0;
+};
+
+__attribute__((target("avx2"))) inline uint64_t bits64(__m256i lo, __m256i hi) {
+  return uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(lo))} |
+         (uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(hi))} << 32);
+}
+
+__attribute__((target("avx2"))) inline Block64 block64(const char* p) {
+  const __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+  const __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 32));
+  const __m256i quote = _mm256_set1_epi8('"'), open = _mm256_set1_epi8('<');
+  return {bits64(_mm256_cmpeq_epi8(lo, quote), _mm256_cmpeq_epi8(hi, quote)),
+          bits64(_mm256_cmpeq_epi8(lo, open), _mm256_cmpeq_epi8(hi, open))};
+}
+
+// Bit i: byte i of the 16 at p is one of XML's four spaces (the byte its low nibble picks from
+// `spaces`; bytes from 0x80 pick 0, which they are not).
+__attribute__((target("avx2"))) inline unsigned spaces16(const char* p) {
+  const __m128i spaces = _mm_setr_epi8(' ', 0, 0, 0, 0, 0, 0, 0, 0, '\t', '\n', 0, 0, '\r', 0, 0);
+  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_shuffle_epi8(spaces, x), x)));
+}
+
+// Up to 8 bytes of a literal from `from`, as a load gives them (little-endian, as x86 is).
+template <size_t N>
+constexpr uint64_t bytes_of(const char (&lit)[N], size_t from = 0) {
+  uint64_t v = 0;
+  for (size_t i = from; i < N - 1 && i < from + 8; ++i)
+    v |= uint64_t{static_cast<uint8_t>(lit[i])} << (8 * (i - from));
+  return v;
+}
+
+inline uint64_t load8(const char* p) {
+  uint64_t v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
+
+// The five quotes after the first one of the block's quotes `q`, at `at`; false when there are
+// fewer than five in the 64 bytes.
+inline bool five_quotes(uint64_t q, int (&at)[5]) {
+  q &= q - 1;  // the first one (the opening quote of the first value) is the head's
+  for (int& a : at) {
+    if (!q) return false;
+    a = std::countr_zero(q);
+    q &= q - 1;
+  }
+  return true;
+}
+
+// Where an element whose last value closes at quote q ends: past `"/>` or `" />`; 0: neither.
+inline int tag_end(const char* p, int q) {
+  constexpr uint64_t kShort = bytes_of("\"/>"), kLong = bytes_of("\" />");
+  const uint64_t w = load8(p + q);
+  if ((w & 0xFFFFFF) == kShort) return q + 3;
+  if ((w & 0xFFFFFFFF) == kLong) return q + 4;
+  return 0;
+}
+
+// Whether only spaces, at most 16, lie between an element's end e and the block's next '<' at
+// `next` (the element's own is at 0, and it holds no other).
+__attribute__((target("avx2"))) inline bool spaces_between(const char* p, int e, int next) {
+  if (next >= 64 || next - e > 16) return false;
+  const unsigned gap = (1u << (next - e)) - 1;
+  return (spaces16(p + e) & gap) == gap;
+}
+
+// The fast reading needs this many bytes from an element's start: its 64, and the 16 a value or
+// the spaces after it are loaded with.
+constexpr ptrdiff_t kPlainBytes = 96;
+
+// Elements are read in batches, appended to the caller's vector after each: no call within the
+// loop that reads them.
+constexpr int kBatch = 256;
+
+// The values of `count` indices (rounded up to a multiple of 4; the values past `count` are
+// read too) of at most 8 digits each: the 8 bytes at each value's start in `chunks`, shifted left
+// by `shifts` bits (8 for each byte past its n digits), four at a time with AVX2; the values go
+// to `out`, 4 bytes each. The index of the first value that is not all decimal digits, or `count`.
+__attribute__((target("avx2"))) int indices_avx2(const uint64_t* chunks, const uint64_t* shifts, int count,
+                                                 char* out) {
+  const __m256i zero = _mm256_setzero_si256();
+  for (int i = 0; i < count; i += 4) {
+    const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(chunks + i));
+    const __m256i s = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(shifts + i));
+    // Each lane: its digits' values at the top, most significant first, zeros before them.
+    const __m256i d = _mm256_sllv_epi64(_mm256_sub_epi8(c, _mm256_set1_epi8('0')), s);
+    const unsigned ok = static_cast<unsigned>(
+        _mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(d, _mm256_set1_epi8(9)), zero)));
+    if (ok != 0xFFFFFFFFu) return std::min(count, i + std::countr_zero(~ok) / 8);
+    const __m256i pairs = _mm256_maddubs_epi16(d, _mm256_set1_epi16(0x010A));       // 10a + b
+    const __m256i fours = _mm256_madd_epi16(pairs, _mm256_set1_epi32(0x00010064));  // 100a + b
+    // The lane's first four digits times 10^4 plus its last four.
+    const __m256i eights =
+        _mm256_add_epi64(_mm256_mul_epu32(fours, _mm256_set1_epi64x(10000)), _mm256_srli_epi64(fours, 32));
+    const __m256i packed = _mm256_permutevar8x32_epi32(eights, _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i), _mm256_castsi256_si128(packed));
+  }
+  return count;
+}
+
+// Triangles in the plain form from p on, begun before `limit`, with kPlainBytes before `end`: their
+// indices appended to `out`; where the first element not read begins (or the spaces before it).
+// A batch of elements is found first, each value's bytes noted; then their values are read at
+// once (indices_avx2()), and the batch ends before the first element holding a value that is no
+// number.
+__attribute__((target("avx2"))) const char* plain_triangles(const char* p, const char* limit, const char* end,
+                                                            std::vector<std::array<uint32_t, 3>>& out) {
+  static constexpr char kHead[] = "<triangle v1=\"";  // 14 bytes: 0-7 and 6-13
+  constexpr uint64_t head0 = bytes_of(kHead), head1 = bytes_of(kHead, 6);
+  constexpr uint64_t kSix = (uint64_t{1} << 48) - 1;
+  constexpr uint64_t v2 = bytes_of("\" v2=\"") & kSix, v3 = bytes_of("\" v3=\"") & kSix;
+  static_assert(sizeof(std::array<uint32_t, 3>) == 12);
+  constexpr int kValues = 3 * kBatch + 4;  // read four at a time
+  uint64_t chunks[kValues], shifts[kValues];
+  const char* starts[kBatch];
+  std::array<uint32_t, 3> batch[kBatch + 2];
+  for (bool more = true; more;) {
+    int n = 0;
+    for (; n < kBatch; ++n) {
+      more = false;
+      if (p >= limit || end - p < kPlainBytes || load8(p) != head0 || load8(p + 6) != head1) break;
+      const Block64 b = block64(p);
+      // Where the next element begins is found first, so that reading this one is not waited for
+      // (checked below: only spaces before it).
+      const int next = std::countr_zero(b.open & (b.open - 1));
+      int q[5];  // the closing quote of v1, the opening and closing of v2 and v3
+      if (!five_quotes(b.quote, q)) break;
+      const int n1 = q[0] - 14, n2 = q[2] - q[1] - 1, n3 = q[4] - q[3] - 1;
+      if (q[1] != q[0] + 5 || q[3] != q[2] + 5 || n1 < 1 || n1 > 8 || n2 < 1 || n2 > 8 || n3 < 1 || n3 > 8 ||
+          (load8(p + q[0]) & kSix) != v2 || (load8(p + q[2]) & kSix) != v3)
+        break;
+      const int e = tag_end(p, q[4]);
+      if (!e) break;
+      starts[n] = p;
+      chunks[3 * n] = load8(p + 14);
+      chunks[3 * n + 1] = load8(p + q[1] + 1);
+      chunks[3 * n + 2] = load8(p + q[3] + 1);
+      shifts[3 * n] = 8 * (8 - n1);
+      shifts[3 * n + 1] = 8 * (8 - n2);
+      shifts[3 * n + 2] = 8 * (8 - n3);
+      if (!spaces_between(p, e, next)) {  // the caller skips the spaces
+        p += e;
+        ++n;
+        break;
+      }
+      p += next;
+      more = true;
+    }
+    for (int i = 3 * n; i < 3 * n + 4; ++i) {  // a whole last four: zeros
+      chunks[i] = 0x3030303030303030ull;
+      shifts[i] = 0;
+    }
+    const int first_bad = indices_avx2(chunks, shifts, 3 * n, reinterpret_cast<char*>(batch)) / 3;
+    if (first_bad < n) {  // that element is read attribute after attribute (which says what is wrong)
+      n = first_bad;
+      p = starts[first_bad];
+      more = false;
+    }
+    out.insert(out.end(), batch, batch + n);
+  }
+  return p;
+}
+
+// The value of a coordinate of n bytes at a, as number() reads it; false when it does not read to
+// its closing quote, or is no finite number.
+__attribute__((target("ssse3"))) inline bool plain_coordinate(const char* a, int n, const char* end,
+                                                              float& out) {
+  if (n >= 1 && n <= 15 && decimal_ssse3(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a)), a, n, out))
+    return true;
+  return number(a, end, out) == a + n && std::isfinite(out);
+}
+
+// Vertices in the plain form from p on, as plain_triangles(): x, y, z appended to `out`.
+__attribute__((target("avx2"))) const char* plain_vertices(const char* p, const char* limit, const char* end,
+                                                           std::vector<float>& out) {
+  static constexpr char kHead[] = "<vertex x=\"";  // 11 bytes: 0-7 and 3-10
+  constexpr uint64_t head0 = bytes_of(kHead), head1 = bytes_of(kHead, 3);
+  constexpr uint64_t kFour = (uint64_t{1} << 32) - 1;
+  constexpr uint64_t y = bytes_of("\" y=\"") & kFour, z = bytes_of("\" z=\"") & kFour;
+  float batch[kBatch][3];
+  for (bool more = true; more;) {
+    int n = 0;
+    for (; n < kBatch; ++n) {
+      more = false;
+      if (p >= limit || end - p < kPlainBytes || load8(p) != head0 || load8(p + 3) != head1) break;
+      const Block64 b = block64(p);
+      const int next = std::countr_zero(b.open & (b.open - 1));  // as plain_triangles()
+      int q[5];
+      if (!five_quotes(b.quote, q)) break;
+      if (q[1] != q[0] + 4 || q[3] != q[2] + 4 || (load8(p + q[0]) & kFour) != y ||
+          (load8(p + q[2]) & kFour) != z)
+        break;
+      const int e = tag_end(p, q[4]);
+      if (!e || !plain_coordinate(p + 11, q[0] - 11, end, batch[n][0]) ||
+          !plain_coordinate(p + q[1] + 1, q[2] - q[1] - 1, end, batch[n][1]) ||
+          !plain_coordinate(p + q[3] + 1, q[4] - q[3] - 1, end, batch[n][2]))
+        break;
+      if (!spaces_between(p, e, next)) {  // the caller skips the spaces
+        p += e;
+        ++n;
+        break;
+      }
+      p += next;
+      more = true;
+    }
+    out.insert(out.end(), &batch[0][0], &batch[0][0] + 3 * n);
+  }
+  return p;
 }
 
 #endif
@@ -214,6 +453,7 @@ class Scanner {
   Scanner(std::string_view s, size_t at) : s_(s), i_(at) {
 #if defined(__SSE2__)
     simd_ = use_ssse3();
+    plain_ = use_avx2();
 #endif
   }
   size_t pos() const { return i_; }
@@ -294,6 +534,28 @@ class Scanner {
 #endif
     return number(p, end, out);
   }
+  // The plain elements at the cursor read at once (plain_vertices(), plain_triangles()), each
+  // begun before `limit`: whether there was one.
+  template <class T>
+  bool plain(std::vector<T>& out, size_t limit) {
+#if defined(__SSE2__)
+    if (!plain_) return false;
+    const char* const b = s_.data();
+    const char* const lim = b + std::min(limit, s_.size());
+    const char* p;
+    if constexpr (std::is_same_v<T, float>)
+      p = plain_vertices(b + i_, lim, b + s_.size(), out);
+    else
+      p = plain_triangles(b + i_, lim, b + s_.size(), out);
+    const bool any = p != b + i_;
+    i_ = static_cast<size_t>(p - b);
+    return any;
+#else
+    (void)out;
+    (void)limit;
+    return false;
+#endif
+  }
   // `<name ...>` (not closed by itself), its attributes ignored.
   template <size_t N>
   bool start(const char (&name)[N]) {
@@ -305,7 +567,8 @@ class Scanner {
  private:
   std::string_view s_;
   size_t i_;
-  [[maybe_unused]] bool simd_ = false;  // read_number() with SSSE3
+  [[maybe_unused]] bool simd_ = false;   // read_number() with SSSE3
+  [[maybe_unused]] bool plain_ = false;  // plain() with AVX2
 };
 
 // How reading a run of elements ended: at its closing tag, at an element it does not read, or
@@ -356,6 +619,7 @@ Run vertices(Scanner& sc, std::vector<float>& out, size_t limit, Bad& bad) {
   for (;;) {
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
+    if (sc.plain(out, limit)) continue;
     if (sc.eat("</vertices>")) return Run::kDone;
     static constexpr char kXyz[3][5] = {" x=\"", " y=\"", " z=\""};
     float xyz[3];
@@ -389,6 +653,7 @@ Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t lim
   for (;;) {
     if (sc.pos() >= limit) return Run::kMore;
     sc.skip_space();
+    if (sc.plain(out, limit)) continue;
     if (sc.eat("</triangles>")) return Run::kDone;
     static constexpr char kV123[3][6] = {" v1=\"", " v2=\"", " v3=\""};
     uint32_t v[3];
@@ -696,6 +961,55 @@ bool streamed_run(Window& w, size_t& at, std::vector<T>& out, Bad& bad,
   }
 }
 
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+// Whether the page holding `p` is not in memory yet (memory malloc has just mapped, never used).
+bool fresh_page(const void* p) {
+  const uintptr_t page = reinterpret_cast<uintptr_t>(p) & ~uintptr_t{4095};
+  unsigned char resident = 1;
+  return mincore(reinterpret_cast<void*>(page), 4096, &resident) == 0 && !(resident & 1);
+}
+#endif
+
+// Room for n elements in `v` (empty), in huge pages for the whole 2 MiB pages they will fill when
+// the room is memory malloc has just mapped: a fresh process then takes one page fault for each
+// 2 MiB of a mesh's arrays instead of 512 (the 3MF's meshes in bench_plate's load: 10 000 page
+// faults fewer, 0.015 s of CPU). Such room is taken again, rounded up so that malloc maps memory
+// of its own whose length is a whole number of 2 MiB (its header fits in the 64 bytes left), which
+// the kernel places at a 2 MiB boundary (Linux 6.7 on). The rounding is address space only: the
+// pages past the n elements are never touched, and those past their last whole 2 MiB stay small,
+// so the memory used is what the elements need. As malloc has written its header into the first
+// 2 MiB already (a small page there, which a fault would not replace), those 2 MiB are made huge
+// pages at once (MADV_COLLAPSE, Linux 6.1 on). Room malloc had in use before (a process that
+// loads again and again) is kept as it is: its pages are there already. Elsewhere, or when the
+// system has no huge page to give, the pages are ordinary ones: only the time differs.
+template <class T>
+void reserve_huge(std::vector<T>& v, size_t n) {
+  v.reserve(n);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr size_t kHuge = size_t{2} << 20, kHeader = 64;
+  constexpr int kCollapse = 25;  // MADV_COLLAPSE (asm-generic/mman-common.h); older kernels refuse it
+  const size_t bytes = n * sizeof(T);
+  // (Its middle: malloc writes its headers at either end.)
+  if (bytes < kHuge || !fresh_page(reinterpret_cast<const char*>(v.data()) + bytes / 2)) return;
+  std::vector<T> rounded;
+  try {
+    rounded.reserve(((bytes + kHeader + kHuge - 1) / kHuge * kHuge - kHeader) / sizeof(T));
+  } catch (const std::bad_alloc&) {  // no address space for the rounding (a limit on it): the room as it is
+    return;
+  }
+  v.swap(rounded);  // the first room is let go untouched
+  const uintptr_t at = reinterpret_cast<uintptr_t>(v.data());
+  // The 2 MiB page the elements begin in, when the mapping begins there (only malloc's header
+  // before them); else the next one.
+  const uintptr_t from = at % kHuge <= kHeader ? at - at % kHuge : at - at % kHuge + kHuge;
+  const uintptr_t to = (at + bytes) - (at + bytes) % kHuge;
+  if (to > from && fresh_page(reinterpret_cast<void*>(to - kHuge / 2))) {
+    madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);  // hints: no error to see
+    madvise(reinterpret_cast<void*>(from), to - from, kCollapse);
+  }
+#endif
+}
+
 // Memory kept from mesh to mesh (grown once) by the streamed pass.
 struct Scratch {
   std::vector<float> vertices;  // as read
@@ -716,7 +1030,8 @@ std::optional<MeshData> streamed_mesh(Window& w, size_t& at, Scratch& scratch) {
   scratch.vertices.clear();
   if (!streamed_run(w, at, scratch.vertices, scratch.bad, vertices) || !w.look(at)) return std::nullopt;
   const size_t nv = scratch.vertices.size() / 3;
-  m.triangles.reserve(2 * nv + 1);
+  reserve_huge(m.triangles, 2 * nv + 1);
+  reserve_huge(m.vertices, nv);  // order_by_first_use's size for them
   sc = Scanner(w.text(), at);
   sc.skip_space();
   if (!sc.start("triangles")) return std::nullopt;
@@ -829,7 +1144,7 @@ std::optional<SplitModel> split_meshes_streamed(Chunks& chunks) {
   return split_streamed(w);
 }
 
-void allow_simd(bool allowed) { simd_allowed.store(allowed); }
+void limit_simd(Simd most) { simd_limit.store(most); }
 
 std::optional<uint32_t> placeholder_id(const float* a, const float* b, const float* c) {
   if (a[1] != kMarkY || a[2] != 0 || b[0] != a[0] || b[1] != kMarkY + 1 || b[2] != 0 || c[0] != a[0] ||

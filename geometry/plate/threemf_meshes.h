@@ -14,7 +14,8 @@
 // The objects' meshes are read in parallel (TBB), with the result one pass in order would give;
 // numbers are read to the value std::from_chars gives (the common forms without it: indices eight
 // digits at a time, coordinates with SSSE3 where the CPU has it, their 16 bytes at once; the
-// others by it).
+// others by it). Elements in the plain form are read whole with AVX2 where the CPU has it (each
+// from one look at its 64 bytes), the others attribute after attribute, to the same values.
 #pragma once
 
 #include <array>
@@ -82,9 +83,11 @@ class Chunks {
 // split_meshes_streamed on chunks: the same result, or nothing where it gives nothing.
 std::optional<SplitModel> split_meshes_streamed(Chunks& chunks);
 
-// Whether the scanner may read coordinates with the CPU's SSSE3 instructions where it has them
-// (the default); the numbers are the same either way, which the tests check both ways.
-void allow_simd(bool allowed);
+// The most of the CPU's vector instructions the scanner may use where the CPU has them: none;
+// SSSE3 for coordinates; and AVX2 for whole plain elements (the default). The results are the
+// same at every level, which the tests check at each.
+enum class Simd { kNone, kSsse3, kAvx2 };
+void limit_simd(Simd most);
 
 // The id of the object whose placeholder lib3mf read as the mesh of the one triangle a, b, c
 // (x, y, z each), if it is one.

@@ -322,12 +322,10 @@ class Repacker {
 // reading the meshes overlap.
 class ReadAhead : public Chunks {
  public:
-  explicit ReadAhead(ZipStream& in) : in_(in) {
-    for (int i = 0; i < kChunks; ++i) {
-      // Not zeroed: every byte is written before it is read.
-      memory_.push_back(std::make_unique_for_overwrite<char[]>(kRoom + kChunk));
-      free_.push_back(memory_.back().get());
-    }
+  // The chunks in one piece of memory, in huge pages where the system grants them (ZipBytes: not
+  // zeroed, as every byte is written before it is read).
+  explicit ReadAhead(ZipStream& in) : in_(in), memory_(kChunks * (kRoom + kChunk)) {
+    for (int i = 0; i < kChunks; ++i) free_.push_back(memory_.data() + i * (kRoom + kChunk));
     thread_ = std::thread([this] { run(); });
   }
   ReadAhead(const ReadAhead&) = delete;
@@ -405,7 +403,7 @@ class ReadAhead : public Chunks {
   }
 
   ZipStream& in_;
-  std::vector<std::unique_ptr<char[]>> memory_;
+  ZipBytes memory_;
   std::mutex m_;
   std::condition_variable cv_;
   std::deque<Chunk> ready_;

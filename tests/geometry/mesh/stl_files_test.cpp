@@ -2,9 +2,11 @@
 // inputs that must load or fail cleanly.
 #include <doctest/doctest.h>
 
+#include <fstream>
 #include <random>
 #include <string>
 
+#include "geometry/mesh/file_bytes.h"
 #include "geometry/mesh/stl.h"
 #include "tests/geometry/mesh/stl_helpers.h"
 #include "tests/support/fixtures.h"
@@ -110,4 +112,39 @@ TEST_CASE("random bytes and mutated files never crash and always give a message"
   // Both outcomes occur: the mutations are neither all harmless nor all fatal.
   CHECK(loaded > 100);
   CHECK(failed > 100);
+}
+
+TEST_CASE("read_file_bytes: bytes kept in huge pages are the file's, above and below 4 MiB") {
+  // FileMemory is asked after the head check (so a loader can choose by what it saw), and only
+  // for a regular file; the bytes read are the file's either way, and are freed either way.
+  test::TempDir dir("file-bytes");
+  std::mt19937 rng(404);
+  for (const size_t size :
+       {size_t{1}, size_t{3000}, (size_t{4} << 20) - 1, size_t{4} << 20, (size_t{9} << 20) + 7}) {
+    CAPTURE(size);
+    std::string bytes(size, '\0');
+    for (char& c : bytes) c = static_cast<char>(rng());
+    const std::string path = (dir.path() / "f.bin").string();
+    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    for (const geo::FileMemory memory : {geo::FileMemory::kHeap, geo::FileMemory::kHugePages}) {
+      bool checked = false, asked_after = false;
+      auto got = geo::read_file_bytes(
+          path,
+          [&](std::string_view head, std::optional<uint64_t> n) -> Result<uint64_t> {
+            checked = true;
+            CHECK(head == std::string_view(bytes).substr(0, geo::kHeadBytes));
+            CHECK(n == size);
+            return UINT64_MAX;
+          },
+          [&] {
+            asked_after = checked;
+            return memory;
+          });
+      REQUIRE_MESSAGE(got.ok(), got.error().to_string());
+      CHECK(asked_after);
+      CHECK(got->view() == bytes);
+      CHECK(got->data.get_deleter().mapped ==
+            (memory == geo::FileMemory::kHugePages && size >= (size_t{4} << 20) ? size : 0));
+    }
+  }
 }
