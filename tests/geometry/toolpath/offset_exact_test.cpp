@@ -210,6 +210,16 @@ int sweep_size() {
   return s ? std::max(1, std::atoi(s)) : 120;
 }
 
+// A ring written as "x,y x,y ..." in model units.
+geo::Ring ring_of(const char* txt) {
+  geo::Ring ring;
+  std::istringstream in(txt);
+  long long x = 0, y = 0;
+  char comma = 0;
+  while (in >> x >> comma >> y) ring.emplace_back(x, y);
+  return ring;
+}
+
 }  // namespace
 
 TEST_CASE("exact region: the sampler's own answers on shapes whose offsets are known") {
@@ -343,11 +353,7 @@ TEST_CASE("clip: a star's tip with a hairline loop, as a union left it, grown as
       "-2629767,-2000234 -3279469,-3354007 -2344139,-3064636 -2595117,-3868696 -2595316,-3868965 "
       "-2601135,-3887976 -2595117,-3868696 -525067,-1072073 -481135,-1022352 -1314772,-4556239 "
       "-1003063,-3711635 -992838,-3686302 -715931,-4538020 36254,-2580053 757556,-5709608";
-  geo::Ring ring;
-  std::istringstream in(txt);
-  long long x = 0, y = 0;
-  char comma = 0;
-  while (in >> x >> comma >> y) ring.emplace_back(x, y);
+  const geo::Ring ring = ring_of(txt);
   REQUIRE(ring.size() == 86);
   const geo::Rings region{ring};
   const test::ExactRegion exact(region);
@@ -395,11 +401,7 @@ TEST_CASE("clip: a star with arms narrower than twice the distance shrinks to no
       "-6513552,-1944665 -503339,-323476 -4403978,-5082462 -4435511,-5154228 -4428183,-5157448 -248551,-544251 "
       "-957076,-6656610 -944804,-6734031 -936898,-6732778 85150,-592230 2793691,-6117331 2845872,-6175827 "
       "2851845,-6170499 391817,-452180 5657481,-3635842 5733004,-3656841 5735148,-3649129 574084,-168566";
-  geo::Ring ring;
-  std::istringstream in(txt);
-  long long x = 0, y = 0;
-  char comma = 0;
-  while (in >> x >> comma >> y) ring.emplace_back(x, y);
+  const geo::Ring ring = ring_of(txt);
   REQUIRE(ring.size() == 44);
   const geo::Rings region{ring};
   const test::ExactRegion exact(region);
