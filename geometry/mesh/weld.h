@@ -69,7 +69,6 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
 // drops them, as the welder does, after numbering their corners). `scratch` is working memory a
 // loader may keep from mesh to mesh.
 struct WeldScratch {
-  std::vector<uint64_t> hashes;  // by input vertex
   std::vector<uint32_t> first;   // by input vertex: the first vertex of its value
   std::vector<uint32_t> id;      // by input vertex: its id in `out`
   std::vector<uint64_t> slots;   // hash table of input vertices: fingerprint << 32 | vertex
