@@ -1047,6 +1047,9 @@ void reserve_huge(std::vector<T>& v, size_t n) {
 
 // Memory kept from mesh to mesh (grown once) by the streamed pass.
 struct Scratch {
+  // Room for the vertices of most meshes (350 000 vertices, address space until written), so that
+  // the first mesh's are not copied as the vector grows (bench_plate's 3MF: 300 page faults fewer).
+  Scratch() { vertices.reserve(size_t{1} << 20); }
   std::vector<float> vertices;  // as read
   Bad bad;                      // a value that is no number: the whole text says where
   geo::WeldScratch weld;
