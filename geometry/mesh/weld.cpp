@@ -165,12 +165,12 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
   std::vector<Vec3> ordered;
   WeldScratch scratch;
-  order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
-  return weld_ordered(std::move(ordered), std::move(triangles), where, report);
+  const size_t degenerate = order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
+  return weld_ordered(std::move(ordered), std::move(triangles), where, report, degenerate);
 }
 
-void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
-                        std::vector<Vec3>& out, WeldScratch& scratch) {
+size_t order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                          std::vector<Vec3>& out, WeldScratch& scratch) {
   // Two passes: each vertex looked up among those before it (by its bits), in order, its hash
   // computed a few vertices ahead so that the table's slot can be fetched ahead; then the corners,
   // numbering each vertex's value when first used, as the Welder numbers corners. Where no vertex
@@ -221,6 +221,7 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
   uint32_t* id = scratch.id.data();
   out.clear();
   out.reserve(nv);
+  size_t degenerate = 0;
   if (dups == 0) {
     for (auto& t : triangles) {
       for (uint32_t& c : t) {
@@ -232,8 +233,9 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
         }
         c = i;
       }
+      degenerate += (t[0] == t[1]) | (t[1] == t[2]) | (t[0] == t[2]);
     }
-    return;
+    return degenerate;
   }
   for (auto& t : triangles) {
     for (uint32_t& c : t) {
@@ -247,13 +249,21 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
       }
       c = id[f];
     }
+    degenerate += (t[0] == t[1]) | (t[1] == t[2]) | (t[0] == t[2]);
   }
+  return degenerate;
 }
 
 Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
-                          const std::string& where, Report& report) {
+                          const std::string& where, Report& report, std::optional<size_t> degenerate_known) {
   const size_t n = triangles.size(), nv = vertices.size();
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
+  if (degenerate_known == size_t{0} && n > 0) {  // nothing to drop: the mesh as it is
+    Mesh mesh;
+    mesh.vertices = std::move(vertices);
+    mesh.triangles = std::move(triangles);
+    return mesh;
+  }
   size_t kept = 0;
   for (size_t t = 0; t < n; ++t) {
     const auto c = triangles[t];

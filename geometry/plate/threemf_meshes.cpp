@@ -720,8 +720,12 @@ Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t lim
 // (`nv` vertices read.)
 bool complete(const std::vector<std::array<uint32_t, 3>>& triangles, size_t nv) {
   if (triangles.empty()) return false;
+  // The indices as one array (three to a triangle, no padding), which the compiler reads with
+  // vector instructions.
+  static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t));
+  const uint32_t* index = reinterpret_cast<const uint32_t*>(triangles.data());
   uint32_t most = 0;
-  for (const auto& t : triangles) most = std::max({most, t[0], t[1], t[2]});
+  for (size_t i = 0, n = 3 * triangles.size(); i < n; ++i) most = std::max(most, index[i]);
   return most < nv;
 }
 
@@ -740,7 +744,7 @@ std::optional<MeshData> mesh(Scanner& sc, Bad& bad) {
   sc.skip_space();
   if (!sc.eat("</mesh>") || !complete(m.triangles, read.size() / 3)) return std::nullopt;
   geo::WeldScratch scratch;
-  geo::order_by_first_use(read.data(), read.size() / 3, m.triangles, m.vertices, scratch);
+  m.degenerate = geo::order_by_first_use(read.data(), read.size() / 3, m.triangles, m.vertices, scratch);
   m.ordered = true;
   return m;
 }
@@ -1079,7 +1083,7 @@ std::optional<MeshData> streamed_mesh(Window& w, size_t& at, Scratch& scratch) {
   sc.skip_space();
   if (!sc.eat("</mesh>") || !complete(m.triangles, nv)) return std::nullopt;
   at = sc.pos();
-  geo::order_by_first_use(scratch.vertices.data(), nv, m.triangles, m.vertices, scratch.weld);
+  m.degenerate = geo::order_by_first_use(scratch.vertices.data(), nv, m.triangles, m.vertices, scratch.weld);
   m.ordered = true;
   return m;
 }
