@@ -223,33 +223,39 @@ size_t order_by_first_use(const float* vertices, size_t nv, std::vector<std::arr
   out.reserve(nv);
   size_t degenerate = 0;
   if (dups == 0) {
-    for (auto& t : triangles) {
-      for (uint32_t& c : t) {
-        uint32_t i = id[c];
-        if (i == kEmpty) {
-          i = id[c] = static_cast<uint32_t>(out.size());
-          const float* p = vertices + 3 * size_t{c};
-          out.push_back(Vec3{double{p[0]} + 0.0, double{p[1]} + 0.0, double{p[2]} + 0.0});  // -0 is +0
-        }
-        c = i;
+    // (Each triangle's corners read into registers and written back once: the count then waits
+    // for no store.)
+    const auto number = [&](uint32_t c) {
+      uint32_t i = id[c];
+      if (i == kEmpty) {
+        i = id[c] = static_cast<uint32_t>(out.size());
+        const float* p = vertices + 3 * size_t{c};
+        out.push_back(Vec3{double{p[0]} + 0.0, double{p[1]} + 0.0, double{p[2]} + 0.0});  // -0 is +0
       }
-      degenerate += (t[0] == t[1]) | (t[1] == t[2]) | (t[0] == t[2]);
+      return i;
+    };
+    for (auto& t : triangles) {
+      const uint32_t a = number(t[0]), b = number(t[1]), c = number(t[2]);
+      t = {a, b, c};
+      degenerate += (a == b) | (b == c) | (a == c);
     }
     return degenerate;
   }
-  for (auto& t : triangles) {
-    for (uint32_t& c : t) {
-      const uint32_t f = first[c];
-      if (id[f] == kEmpty) {
-        id[f] = static_cast<uint32_t>(out.size());
-        const auto k = key(f);
-        float p[3];
-        std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
-        out.push_back(Vec3{p[0], p[1], p[2]});
-      }
-      c = id[f];
+  const auto number = [&](uint32_t c) {
+    const uint32_t f = first[c];
+    if (id[f] == kEmpty) {
+      id[f] = static_cast<uint32_t>(out.size());
+      const auto k = key(f);
+      float p[3];
+      std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
+      out.push_back(Vec3{p[0], p[1], p[2]});
     }
-    degenerate += (t[0] == t[1]) | (t[1] == t[2]) | (t[0] == t[2]);
+    return id[f];
+  };
+  for (auto& t : triangles) {
+    const uint32_t a = number(t[0]), b = number(t[1]), c = number(t[2]);
+    t = {a, b, c};
+    degenerate += (a == b) | (b == c) | (a == c);
   }
   return degenerate;
 }
