@@ -162,64 +162,30 @@ bool use_avx2() {
 #endif
 }
 
-// What decimal_ssse3() needs to know of a coordinate of n bytes (1 to 15) with its point (the
-// first '.') at byte `point` (n: none) and a '-' in front or not: where each of the 16 output
-// bytes takes its digit from (the value's digits right-aligned, those before the first zeros: the
-// byte shuffle's control), which bytes must be digits (all but the sign and the point), and the
-// number of digits after the point (-1: a form decimal_ssse3() leaves to number(), with no digit
-// before the point or more than 15 digits). Looked up rather than computed: the same for every
-// value of a column of a file, so it stays in the cache.
-struct alignas(32) DecimalForm {
-  uint8_t control[16] = {};
-  uint16_t need = 0;
-  int8_t fraction = -1;
-};
-
-struct DecimalForms {
-  DecimalForm form[16][16][2];  // [n][point][minus]
-};
-
-constexpr DecimalForms decimal_forms() {
-  DecimalForms t{};
-  for (int n = 1; n < 16; ++n)
-    for (int point = 0; point <= n; ++point)
-      for (int minus = 0; minus < 2; ++minus) {
-        DecimalForm& f = t.form[n][point][minus];
-        const bool dot = point < n;
-        const int whole = point - minus, digits = n - minus - (dot ? 1 : 0);
-        if (whole <= 0 || digits > 15) continue;  // fraction stays -1
-        f.fraction = static_cast<int8_t>(digits - whole);
-        unsigned need = (1u << n) - 1;
-        if (minus) need &= ~1u;
-        if (dot) need &= ~(1u << point);
-        f.need = static_cast<uint16_t>(need);
-        // Output byte o holds digit t = o - (16 - digits): from the byte after the sign, the point
-        // skipped; 0x80 (a zero) before the first digit.
-        for (int o = 0; o < 16; ++o) {
-          const int d = o - (16 - digits);
-          f.control[o] = d < 0 ? 0x80 : static_cast<uint8_t>(d + minus + (d >= whole ? 1 : 0));
-        }
-      }
-  return t;
-}
-
-constexpr DecimalForms kDecimalForms = decimal_forms();
-
 // number() of the n bytes (1 to 15) of a coordinate at a, which `x` holds (16 bytes loaded from
-// a), with SSSE3 (the byte shuffle): the digits gathered as its form says (DecimalForm), converted
-// at once (pairs, fours, eights), then as number(); false for the forms it does not read (number()
-// does).
+// a), with SSSE3 (the byte shuffle): the sign and point taken out, the digits converted at once
+// (pairs, fours, eights), then as number(); false for the forms it does not read (number() does).
 __attribute__((target("ssse3"))) inline bool decimal_ssse3(__m128i x, const char* a, int n, float& out) {
   const unsigned in = (1u << n) - 1;  // the value's bytes
   const int minus = *a == '-';
   const unsigned dots = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_set1_epi8('.')))) & in;
   const int point = dots ? std::countr_zero(dots) : n;  // where the point is (n: none)
-  const DecimalForm& form = kDecimalForms.form[n][point][minus];
+  const int whole = point - minus;                      // digits before it
+  const int digits = n - minus - (dots ? 1 : 0);
   const __m128i d = _mm_sub_epi8(x, _mm_set1_epi8('0'));
   const unsigned is_digit = static_cast<unsigned>(
       _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
-  if (form.fraction < 0 || (is_digit & form.need) != form.need) return false;
-  const __m128i v = _mm_shuffle_epi8(d, _mm_load_si128(reinterpret_cast<const __m128i*>(form.control)));
+  const unsigned need =
+      in & ~static_cast<unsigned>(minus) & ~(dots & (0u - dots));  // all but the sign and point
+  if (whole <= 0 || digits > 15 || (is_digit & need) != need) return false;
+  // Output byte o holds digit t = o - (16 - digits) (from the byte after the sign, skipping the
+  // point); those before the first digit are zeros.
+  const __m128i t = _mm_add_epi8(_mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                                 _mm_set1_epi8(static_cast<char>(digits - 16)));
+  const __m128i after_point = _mm_cmpgt_epi8(t, _mm_set1_epi8(static_cast<char>(whole - 1)));
+  const __m128i from = _mm_sub_epi8(_mm_add_epi8(t, _mm_set1_epi8(static_cast<char>(minus))), after_point);
+  const __m128i control = _mm_or_si128(from, _mm_cmpgt_epi8(_mm_setzero_si128(), t));  // negative: a zero
+  const __m128i v = _mm_shuffle_epi8(d, control);
   const __m128i pairs =
       _mm_maddubs_epi16(v, _mm_setr_epi8(10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1));
   const __m128i fours = _mm_madd_epi16(pairs, _mm_setr_epi16(100, 1, 100, 1, 100, 1, 100, 1));
@@ -229,7 +195,7 @@ __attribute__((target("ssse3"))) inline bool decimal_ssse3(__m128i x, const char
   const uint64_t m = (both & 0xFFFFFFFF) * 100000000 + (both >> 32);
   static constexpr double kTenth[] = {1e0,  1e-1, 1e-2,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
                                       1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
-  const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[form.fraction];
+  const double r = static_cast<double>(static_cast<int64_t>(m)) * kTenth[digits - whole];
   uint64_t bits;
   std::memcpy(&bits, &r, sizeof bits);
   const float f = static_cast<float>(r);
@@ -720,12 +686,8 @@ Run triangles(Scanner& sc, std::vector<std::array<uint32_t, 3>>& out, size_t lim
 // (`nv` vertices read.)
 bool complete(const std::vector<std::array<uint32_t, 3>>& triangles, size_t nv) {
   if (triangles.empty()) return false;
-  // The indices as one array (three to a triangle, no padding), which the compiler reads with
-  // vector instructions.
-  static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t));
-  const uint32_t* index = reinterpret_cast<const uint32_t*>(triangles.data());
   uint32_t most = 0;
-  for (size_t i = 0, n = 3 * triangles.size(); i < n; ++i) most = std::max(most, index[i]);
+  for (const auto& t : triangles) most = std::max({most, t[0], t[1], t[2]});
   return most < nv;
 }
 
