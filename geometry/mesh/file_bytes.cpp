@@ -114,7 +114,9 @@ char* map_huge(size_t size) {
   if (const size_t after = at + kHuge - aligned; after > 0) munmap(reinterpret_cast<void*>(aligned + length), after);
   char* p = reinterpret_cast<char*>(aligned);
 #ifdef MADV_HUGEPAGE
-  madvise(p, length, MADV_HUGEPAGE);  // a hint: without huge pages it is ordinary memory
+  // Huge pages for the whole 2 MiB the bytes fill; the rest, past them, stays small pages, so that
+  // the memory used is what the bytes need (a hint: without huge pages it is ordinary memory).
+  if (const size_t whole = size / kHuge * kHuge; whole > 0) madvise(p, whole, MADV_HUGEPAGE);
 #endif
   return p;
 }
