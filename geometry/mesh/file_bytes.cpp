@@ -5,6 +5,7 @@
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <new>
 
@@ -25,10 +26,9 @@ constexpr uint64_t kHugeFrom = uint64_t{4} << 20;  // FileMemory::kHugePages fro
 std::unique_ptr<char[], FreeFileBytes> room(uint64_t size, FileMemory memory) {
 #ifdef MADV_HUGEPAGE
   if (memory == FileMemory::kHugePages && size >= kHugeFrom) {
-    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) return {};
-    madvise(p, size, MADV_HUGEPAGE);  // a hint: without huge pages it is ordinary memory
-    return std::unique_ptr<char[], FreeFileBytes>(static_cast<char*>(p), FreeFileBytes{size});
+    char* p = map_huge(size);
+    if (!p) return {};
+    return std::unique_ptr<char[], FreeFileBytes>(p, FreeFileBytes{huge_length(size)});
   }
 #else
   (void)memory;
@@ -95,6 +95,31 @@ Result<FileBytes> read_stream(InputFile& f, const HeadCheck& check_head) {
 }
 
 }  // namespace
+
+size_t huge_length(size_t size) {
+  constexpr size_t kHuge = size_t{2} << 20;
+  return (size + kHuge - 1) / kHuge * kHuge;
+}
+
+char* map_huge(size_t size) {
+  constexpr size_t kHuge = size_t{2} << 20;
+  const size_t length = huge_length(size);
+  if (length < size || length + kHuge < length) return nullptr;  // no such room
+  // Mapped 2 MiB longer, then the parts before the first boundary and past the room let go.
+  void* m = mmap(nullptr, length + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (m == MAP_FAILED) return nullptr;
+  const uintptr_t at = reinterpret_cast<uintptr_t>(m);
+  const uintptr_t aligned = (at + kHuge - 1) & ~uintptr_t{kHuge - 1};
+  if (aligned > at) munmap(m, aligned - at);
+  if (const size_t after = at + kHuge - aligned; after > 0) munmap(reinterpret_cast<void*>(aligned + length), after);
+  char* p = reinterpret_cast<char*>(aligned);
+#ifdef MADV_HUGEPAGE
+  // Huge pages for the whole 2 MiB the bytes fill; the rest, past them, stays small pages, so that
+  // the memory used is what the bytes need (a hint: without huge pages it is ordinary memory).
+  if (const size_t whole = size / kHuge * kHuge; whole > 0) madvise(p, whole, MADV_HUGEPAGE);
+#endif
+  return p;
+}
 
 void FreeFileBytes::operator()(char* p) const {
   if (mapped)

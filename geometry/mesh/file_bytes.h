@@ -35,6 +35,16 @@ struct FileBytes {
 // loader reading file after file reuses: the STL loader keeps the heap).
 enum class FileMemory { kHeap, kHugePages };
 
+// Room for `size` bytes (uninitialised) mapped on its own, beginning at a 2 MiB boundary, its
+// length (huge_length(size)) rounded up to whole 2 MiB, and the whole 2 MiB the bytes fill marked
+// for huge pages: so that each of those, the first too, takes one page fault instead of 512 (an
+// anonymous mapping is otherwise placed anywhere, and the part of its first 2 MiB it holds stays
+// small pages). The rest past them stays small pages: the memory used is what the bytes need,
+// the rounding address space only. Null when there is no memory; freed by munmap(p,
+// huge_length(size)). Where the system has no huge pages it is ordinary memory.
+char* map_huge(size_t size);
+size_t huge_length(size_t size);
+
 // Sees the first bytes of a file (up to kHeadBytes; all of it when shorter) and its size (regular
 // files; nothing for a stream), and returns how many bytes are worth reading (the rest is left
 // unread; UINT64_MAX: all). An error stops the read.

@@ -165,15 +165,16 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
   std::vector<Vec3> ordered;
   WeldScratch scratch;
-  order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
-  return weld_ordered(std::move(ordered), std::move(triangles), where, report);
+  const size_t degenerate = order_by_first_use(vertices.data(), nv, triangles, ordered, scratch);
+  return weld_ordered(std::move(ordered), std::move(triangles), where, report, degenerate);
 }
 
-void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
-                        std::vector<Vec3>& out, WeldScratch& scratch) {
-  // Two passes: each vertex looked up among those before it (by its bits), in order, so that the
-  // table's slot can be fetched ahead; then the corners, numbering each vertex's value when first
-  // used, as the Welder numbers corners.
+size_t order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                          std::vector<Vec3>& out, WeldScratch& scratch) {
+  // Two passes: each vertex looked up among those before it (by its bits), in order, its hash
+  // computed a few vertices ahead so that the table's slot can be fetched ahead; then the corners,
+  // numbering each vertex's value when first used, as the Welder numbers corners. Where no vertex
+  // repeats another (as in nearly every file), the second pass numbers the corners' own vertices.
   const auto key = [&](size_t v) {
     return std::array<uint32_t, 3>{bits_of(vertices[3 * v]), bits_of(vertices[3 * v + 1]),
                                    bits_of(vertices[3 * v + 2])};
@@ -182,17 +183,25 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
   const int shift = 64 - std::countr_zero(capacity);  // the slot: the hash's high bits
   const uint64_t mask = capacity - 1;
   constexpr uint64_t kFree = UINT64_MAX;
-  scratch.hashes.resize(nv);
   scratch.first.resize(nv);
   scratch.slots.assign(capacity, kFree);
-  uint64_t* hashes = scratch.hashes.data();
   uint32_t* first = scratch.first.data();
   uint64_t* slots = scratch.slots.data();
-  for (size_t v = 0; v < nv; ++v) hashes[v] = hash_of(key(v)) * 0x9E3779B97F4A7C15ull;
   constexpr size_t kAhead = 16;
+  uint64_t ring[kAhead];  // the hashes of vertices v to v + kAhead - 1
+  const auto hash = [&](size_t v) { return hash_of(key(v)) * 0x9E3779B97F4A7C15ull; };
+  for (size_t v = 0; v < std::min(nv, kAhead); ++v) {
+    ring[v] = hash(v);
+    __builtin_prefetch(&slots[ring[v] >> shift]);
+  }
+  size_t dups = 0;  // vertices equal to one before them
   for (size_t v = 0; v < nv; ++v) {
-    if (v + kAhead < nv) __builtin_prefetch(&slots[hashes[v + kAhead] >> shift]);
-    const uint64_t h = hashes[v];
+    const uint64_t h = ring[v % kAhead];
+    if (v + kAhead < nv) {
+      const uint64_t g = hash(v + kAhead);
+      ring[v % kAhead] = g;
+      __builtin_prefetch(&slots[g >> shift]);
+    }
     const uint64_t fingerprint = h & 0xFFFFFFFF00000000ull;  // the slot's own bits are the top ones
     for (uint64_t i = h >> shift;; i = (i + 1) & mask) {
       const uint64_t s = slots[i];
@@ -203,6 +212,7 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
       }
       if ((s & 0xFFFFFFFF00000000ull) == fingerprint && key(static_cast<uint32_t>(s)) == key(v)) {
         first[v] = static_cast<uint32_t>(s);
+        ++dups;
         break;
       }
     }
@@ -211,25 +221,55 @@ void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array
   uint32_t* id = scratch.id.data();
   out.clear();
   out.reserve(nv);
-  for (auto& t : triangles) {
-    for (uint32_t& c : t) {
-      const uint32_t f = first[c];
-      if (id[f] == kEmpty) {
-        id[f] = static_cast<uint32_t>(out.size());
-        const auto k = key(f);
-        float p[3];
-        std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
-        out.push_back(Vec3{p[0], p[1], p[2]});
+  size_t degenerate = 0;
+  if (dups == 0) {
+    // (Each triangle's corners read into registers and written back once: the count then waits
+    // for no store.)
+    const auto number = [&](uint32_t c) {
+      uint32_t i = id[c];
+      if (i == kEmpty) {
+        i = id[c] = static_cast<uint32_t>(out.size());
+        const float* p = vertices + 3 * size_t{c};
+        out.push_back(Vec3{double{p[0]} + 0.0, double{p[1]} + 0.0, double{p[2]} + 0.0});  // -0 is +0
       }
-      c = id[f];
+      return i;
+    };
+    for (auto& t : triangles) {
+      const uint32_t a = number(t[0]), b = number(t[1]), c = number(t[2]);
+      t = {a, b, c};
+      degenerate += (a == b) | (b == c) | (a == c);
     }
+    return degenerate;
   }
+  const auto number = [&](uint32_t c) {
+    const uint32_t f = first[c];
+    if (id[f] == kEmpty) {
+      id[f] = static_cast<uint32_t>(out.size());
+      const auto k = key(f);
+      float p[3];
+      std::memcpy(p, k.data(), sizeof p);  // through the bits: -0 is +0
+      out.push_back(Vec3{p[0], p[1], p[2]});
+    }
+    return id[f];
+  };
+  for (auto& t : triangles) {
+    const uint32_t a = number(t[0]), b = number(t[1]), c = number(t[2]);
+    t = {a, b, c};
+    degenerate += (a == b) | (b == c) | (a == c);
+  }
+  return degenerate;
 }
 
 Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
-                          const std::string& where, Report& report) {
+                          const std::string& where, Report& report, std::optional<size_t> degenerate_known) {
   const size_t n = triangles.size(), nv = vertices.size();
   if (n > Welder::kMaxTriangles) return Error{where, too_many(n)};
+  if (degenerate_known == size_t{0} && n > 0) {  // nothing to drop: the mesh as it is
+    Mesh mesh;
+    mesh.vertices = std::move(vertices);
+    mesh.triangles = std::move(triangles);
+    return mesh;
+  }
   size_t kept = 0;
   for (size_t t = 0; t < n; ++t) {
     const auto c = triangles[t];

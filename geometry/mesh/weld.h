@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,18 +70,20 @@ Result<Mesh> weld_indexed(const std::vector<float>& vertices, std::vector<std::a
 // drops them, as the welder does, after numbering their corners). `scratch` is working memory a
 // loader may keep from mesh to mesh.
 struct WeldScratch {
-  std::vector<uint64_t> hashes;  // by input vertex
   std::vector<uint32_t> first;   // by input vertex: the first vertex of its value
   std::vector<uint32_t> id;      // by input vertex: its id in `out`
   std::vector<uint64_t> slots;   // hash table of input vertices: fingerprint << 32 | vertex
 };
-void order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
-                        std::vector<Vec3>& out, WeldScratch& scratch);
+// Returns how many triangles are degenerate (two corners with the same new id), for weld_ordered.
+size_t order_by_first_use(const float* vertices, size_t nv, std::vector<std::array<uint32_t, 3>>& triangles,
+                          std::vector<Vec3>& out, WeldScratch& scratch);
 
 // The second step, on a mesh order_by_first_use gave: degenerate triangles dropped (a warning,
 // "mesh-degenerate"; all of them: an error), the vertices only they use left out, the storage of
-// both taken over. The result is weld_indexed's on the mesh before the first step.
+// both taken over. The result is weld_indexed's on the mesh before the first step. `degenerate`:
+// how many triangles are, when the caller knows (order_by_first_use's count); 0 spares the look
+// at every triangle.
 Result<Mesh> weld_ordered(std::vector<Vec3>&& vertices, std::vector<std::array<uint32_t, 3>>&& triangles,
-                          const std::string& where, Report& report);
+                          const std::string& where, Report& report, std::optional<size_t> degenerate = {});
 
 }  // namespace tranche::geo

@@ -357,9 +357,10 @@ class Build {
       if (w.pieces.size() == 1 && w.pieces[0].keep.empty() && w.pieces[0].t.matrix() == Eigen::Matrix4d::Identity() &&
           w.pieces[0].data->ordered) {
         threemf::MeshData& d = *w.pieces[0].data;
-        w.mesh = uses.at(&d) == 1 ? geo::weld_ordered(std::move(d.vertices), std::move(d.triangles), w.where, log_[w.item])
+        w.mesh = uses.at(&d) == 1 ? geo::weld_ordered(std::move(d.vertices), std::move(d.triangles), w.where,
+                                                      log_[w.item], d.degenerate)
                                   : geo::weld_ordered(std::vector(d.vertices), std::vector(d.triangles), w.where,
-                                                      log_[w.item]);
+                                                      log_[w.item], d.degenerate);
         w.pieces.clear();
         return;
       }

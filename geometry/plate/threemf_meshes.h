@@ -39,6 +39,7 @@ struct MeshData {
   std::vector<geo::Vec3> vertices;                 // in the model's unit (floats, as the file's are read)
   std::vector<std::array<uint32_t, 3>> triangles;  // vertex indices of each triangle, in range
   bool ordered = false;                            // in the welder's order (the scanner's meshes)
+  size_t degenerate = 0;                           // then: its degenerate triangles (order_by_first_use)
 };
 
 struct SplitModel {

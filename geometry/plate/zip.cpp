@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/mesh/file_bytes.h"
+
 namespace tranche::plate {
 namespace {
 
@@ -325,10 +327,8 @@ ZipBytes::ZipBytes(size_t size) : size_(size) {
   if (size == 0) return;
 #ifdef MADV_HUGEPAGE
   if (size >= kMapped) {
-    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    madvise(p, size, MADV_HUGEPAGE);  // a hint: without huge pages it is ordinary memory
-    data_ = static_cast<char*>(p);
+    data_ = geo::map_huge(size);  // its first 2 MiB huge pages too (the inflating's chunks: 500 page faults fewer)
+    if (!data_) throw std::bad_alloc();
     return;
   }
 #endif
@@ -341,7 +341,7 @@ void ZipBytes::release() {
   if (!data_) return;
 #ifdef MADV_HUGEPAGE
   if (size_ >= kMapped) {
-    munmap(data_, size_);
+    munmap(data_, geo::huge_length(size_));
     data_ = nullptr;
     return;
   }

@@ -2,6 +2,10 @@
 // inputs that must load or fail cleanly.
 #include <doctest/doctest.h>
 
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <string>
@@ -143,8 +147,30 @@ TEST_CASE("read_file_bytes: bytes kept in huge pages are the file's, above and b
       REQUIRE_MESSAGE(got.ok(), got.error().to_string());
       CHECK(asked_after);
       CHECK(got->view() == bytes);
-      CHECK(got->data.get_deleter().mapped ==
-            (memory == geo::FileMemory::kHugePages && size >= (size_t{4} << 20) ? size : 0));
+      const bool mapped = memory == geo::FileMemory::kHugePages && size >= (size_t{4} << 20);
+      CHECK(got->data.get_deleter().mapped == (mapped ? geo::huge_length(size) : 0));
+      if (mapped) CHECK(reinterpret_cast<uintptr_t>(got->data.get()) % (size_t{2} << 20) == 0);
     }
   }
+}
+
+TEST_CASE("map_huge: room at a 2 MiB boundary, whole 2 MiB long, every byte of it writable; no room is no room") {
+  constexpr size_t kHuge = size_t{2} << 20;
+  for (const size_t size : {size_t{1}, size_t{4095}, kHuge - 1, kHuge, kHuge + 1, 4 * kHuge + 4096 + 64 * 1024}) {
+    CAPTURE(size);
+    const size_t length = geo::huge_length(size);
+    CHECK(length % kHuge == 0);
+    CHECK(length >= size);
+    CHECK(length < size + kHuge);
+    char* p = geo::map_huge(size);
+    REQUIRE(p != nullptr);
+    CHECK(reinterpret_cast<uintptr_t>(p) % kHuge == 0);
+    std::memset(p, 7, length);  // the rounding is the caller's too
+    CHECK(p[0] == 7);
+    CHECK(p[size - 1] == 7);
+    CHECK(p[length - 1] == 7);
+    CHECK(munmap(p, length) == 0);
+  }
+  CHECK(geo::map_huge(SIZE_MAX - 100) == nullptr);  // rounded up it would wrap
+  CHECK(geo::map_huge(size_t{1} << 62) == nullptr);  // more than the address space
 }

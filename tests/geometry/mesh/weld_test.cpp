@@ -3,6 +3,7 @@
 // same warnings and errors.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -82,6 +83,67 @@ TEST_CASE("weld_indexed: duplicate vertices, -0, degenerate and unused vertices 
   REQUIRE(m.ok());
   CHECK(r.empty());
   CHECK(m->triangles.size() == clean.size() / 3);
+}
+
+TEST_CASE("weld_indexed: meshes whose vertices are all distinct (the order's shorter way) weld as their corners do") {
+  // Vertices no two of which are equal, -0 among them (a vertex with -0 where no other has +0),
+  // given in a shuffled order, some unused, triangles in any order: the first-use order must come
+  // out as the welder numbers corners. Then one vertex repeated under another index, and one -0
+  // whose +0 twin is there: the longer way, the same results.
+  std::mt19937 rng(1331);
+  for (int round = 0; round < 40; ++round) {
+    CAPTURE(round);
+    const int nv = 3 + round * 7;
+    std::vector<float> vertices;
+    for (int i = 0; i < nv; ++i) {
+      vertices.push_back(static_cast<float>(i) * 0.25f);
+      vertices.push_back(i % 4 == 0 ? -0.0f : static_cast<float>(i % 5));
+      vertices.push_back(i % 7 == 0 ? -0.0f : 1.0f);
+    }
+    // Shuffled, so that the first use is no longer the file's order.
+    std::vector<uint32_t> perm(static_cast<size_t>(nv));
+    for (int i = 0; i < nv; ++i) perm[static_cast<size_t>(i)] = static_cast<uint32_t>(i);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    std::vector<float> shuffled(vertices.size());
+    for (int i = 0; i < nv; ++i)
+      for (int k = 0; k < 3; ++k) shuffled[3 * perm[static_cast<size_t>(i)] + k] = vertices[3 * i + k];
+    std::uniform_int_distribution<uint32_t> pick(0, static_cast<uint32_t>(nv - 1 - nv / 5));  // the rest unused
+    std::vector<uint32_t> triangles;
+    for (int t = 0; t < 2 * nv; ++t) {
+      const uint32_t a = pick(rng);
+      uint32_t b = pick(rng), c = pick(rng);
+      if (b == a) b = (a + 1) % static_cast<uint32_t>(nv);
+      if (c == a || c == b) c = (std::max(a, b) + 1) % static_cast<uint32_t>(nv);
+      if (c == a || c == b) continue;
+      triangles.insert(triangles.end(), {a, b, c});
+    }
+    check_same(shuffled, triangles);
+    // A triangle with one vertex twice (degenerate by its indices): dropped with a warning, as
+    // its corners are.
+    std::vector<uint32_t> with_degenerate = triangles;
+    with_degenerate.insert(with_degenerate.end(), {perm[2], perm[2], perm[1]});
+    check_same(shuffled, with_degenerate);
+    std::vector<geo::Vec3> ordered;
+    geo::WeldScratch scratch;
+    std::vector<std::array<uint32_t, 3>> tri(triangles.size() / 3);
+    for (size_t t = 0; t < tri.size(); ++t) tri[t] = {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+    CHECK(geo::order_by_first_use(shuffled.data(), static_cast<size_t>(nv), tri, ordered, scratch) == 0);
+    bool positive_zeros = true;
+    for (const auto& v : ordered) positive_zeros = positive_zeros && !std::signbit(v.x) && !std::signbit(v.y) && !std::signbit(v.z);
+    CHECK(positive_zeros);
+    // A repeated vertex (the last, equal to the first), then a +0 twin of a -0 vertex.
+    std::vector<float> repeated = shuffled;
+    repeated.insert(repeated.end(), shuffled.begin(), shuffled.begin() + 3);
+    std::vector<uint32_t> more = triangles;
+    more.insert(more.end(), {static_cast<uint32_t>(nv), 1, 2});
+    check_same(repeated, more);
+    std::vector<float> twin = shuffled;
+    twin.insert(twin.end(), {0.0f, 0.0f, 1.0f});  // a vertex of its own
+    twin.insert(twin.end(), {0.0f, 0.0f, 0.0f});  // vertex 0 before the shuffle is (0, -0, -0)
+    more = triangles;
+    more.insert(more.end(), {static_cast<uint32_t>(nv + 1), static_cast<uint32_t>(nv), perm[1]});
+    check_same(twin, more);
+  }
 }
 
 TEST_CASE("weld_indexed: errors are those of weld_corners") {

@@ -330,6 +330,21 @@ TEST_CASE("3mf meshes: numbers are read to the float std::from_chars reads, in e
     if (point == n && coin(rng) == 0) t += '.';  // "5."
     texts.push_back(t);
   }
+  // Every form the 16-byte conversion looks up (its length, where its point is, a sign or not),
+  // and those around it, each with digits drawn several times: 1 to 16 digits, the point after
+  // any of them or none, "5." too.
+  for (int n = 1; n <= 16; ++n)
+    for (int point = 1; point <= n + 1; ++point)  // digits before it; n + 1: "5."-like, n: none
+      for (int minus = 0; minus < 2; ++minus)
+        for (int draw = 0; draw < 6; ++draw) {
+          std::string t = minus ? "-" : "";
+          for (int k = 0; k < n; ++k) {
+            if (k == point) t += '.';
+            t += static_cast<char>('0' + (draw == 0 ? 9 : coin(rng) == 0 ? 0 : digit(rng)));
+          }
+          if (point == n + 1) t += '.';
+          texts.push_back(t);
+        }
   // With the CPU's SSSE3 instructions (where it has them) and without.
   for (const threemf::Simd simd : {threemf::Simd::kAvx2, threemf::Simd::kSsse3, threemf::Simd::kNone}) {
     CAPTURE(static_cast<int>(simd));
