@@ -297,6 +297,18 @@ __attribute__((target("avx2"))) inline bool spaces_between(const char* p, int e,
   return (spaces16(p + e) & gap) == gap;
 }
 
+// Past an element read whole (its end at p + e, the next element's '<' at p + next): on to the
+// next when only spaces lie between (true); otherwise to the element's end, whose spaces the caller
+// skips, and the batch ends (false).
+__attribute__((target("avx2"))) inline bool step_to_next(const char*& p, int e, int next) {
+  if (!spaces_between(p, e, next)) {
+    p += e;
+    return false;
+  }
+  p += next;
+  return true;
+}
+
 // The fast reading needs this many bytes from an element's start: its 64, and the 16 a value or
 // the spaces after it are loaded with.
 constexpr ptrdiff_t kPlainBytes = 96;
@@ -371,13 +383,10 @@ __attribute__((target("avx2"))) const char* plain_triangles(const char* p, const
       shifts[3 * n] = 8 * (8 - n1);
       shifts[3 * n + 1] = 8 * (8 - n2);
       shifts[3 * n + 2] = 8 * (8 - n3);
-      if (!spaces_between(p, e, next)) {  // the caller skips the spaces
-        p += e;
+      if (!(more = step_to_next(p, e, next))) {
         ++n;
         break;
       }
-      p += next;
-      more = true;
     }
     for (int i = 3 * n; i < 3 * n + 4; ++i) {  // a whole last four: zeros
       chunks[i] = 0x3030303030303030ull;
@@ -428,13 +437,10 @@ __attribute__((target("avx2"))) const char* plain_vertices(const char* p, const 
           !plain_coordinate(p + q[1] + 1, q[2] - q[1] - 1, end, batch[n][1]) ||
           !plain_coordinate(p + q[3] + 1, q[4] - q[3] - 1, end, batch[n][2]))
         break;
-      if (!spaces_between(p, e, next)) {  // the caller skips the spaces
-        p += e;
+      if (!(more = step_to_next(p, e, next))) {
         ++n;
         break;
       }
-      p += next;
-      more = true;
     }
     out.insert(out.end(), &batch[0][0], &batch[0][0] + 3 * n);
   }
