@@ -184,7 +184,7 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       d.overhang = toolpath::intersection(toolpath::offset(d.overhang, d.reach + 0.05), geo::to_rings({S.layers[L].islands[i].shape}));
       if (d.style == schema::Support::Normal) {
         c.normal.bottom_gap_layers = std::max(c.normal.bottom_gap_layers, gap);
-        c.normal.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});
+        c.normal.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only, gap == 0});
         c.any_normal = true;
         continue;
       }
@@ -192,7 +192,7 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       const int tips_at = k - d.interface_layers;
       c.tree.bottom_gap_layers = std::max(c.tree.bottom_gap_layers, gap);
       if (tips_at >= 0) c.tree.contacts[size_t(tips_at)].push_back({d.overhang, 0, d.bed_only});
-      c.tree_iface.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only});
+      c.tree_iface.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only, gap == 0});
       c.any_tree = true;
     }
   }

@@ -103,7 +103,7 @@ namespace {
 // What layer k prints of its column: the part and its gaps cut out, the interface under the
 // contacts, the rest sparse. Layers are independent here: run in parallel.
 SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& material, size_t k, const Rings& column,
-                         const Rings& iface_src) {
+                         const Rings& iface_src, const Rings& touch) {
   SupportLayer out;
   if (column.empty()) return out;
   const geo::BBox2 box = toolpath::bbox(column);
@@ -116,6 +116,15 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
   for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g) {
     Rings below = toolpath::near(material[k - static_cast<size_t>(g)], box);
     cut.insert(cut.end(), std::make_move_iterator(below.begin()), std::make_move_iterator(below.end()));
+  }
+  // Nor under the part of the layer right above (the top gap): a column comes down round a speck
+  // of the part too small to be an overhang of its own, or under the edge of a slope's next layer
+  // (a contact reaches a little inside its island). Only a contact that asks to touch (z gap 0)
+  // lies under the part above it.
+  if (k + 1 < material.size()) {
+    Rings above = toolpath::near(material[k + 1], box);
+    if (!touch.empty() && !above.empty()) above = toolpath::difference(above, touch);
+    cut.insert(cut.end(), std::make_move_iterator(above.begin()), std::make_move_iterator(above.end()));
   }
   Rings printed = toolpath::difference(toolpath::simplify(canonical(column), kPrintSimplify), cut);
   // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
@@ -146,7 +155,7 @@ ProjectResult project(const ProjectInput& in) {
     return std::any_of(cs.begin(), cs.end(), [](const Contact& c) { return c.bed_only; });
   });
   const std::vector<Rings> foot = any_bed_only ? footprints(in.layers) : std::vector<Rings>{};
-  std::vector<Rings> iface_src(n), columns(n);
+  std::vector<Rings> iface_src(n), columns(n), touch(n);
   Rings column;
   // Top-down, serial: each layer's column is the one above, plus its contacts, less the part. The
   // column stays on the bed (only a contact that reaches past it is clipped to it), and the part
@@ -164,6 +173,7 @@ ProjectResult project(const ProjectInput& in) {
           r = std::move(kept);
         }
         if (r.empty()) continue;
+        if (c.touching) touch[k].insert(touch[k].end(), r.begin(), r.end());
         if (in.columns) fresh.insert(fresh.end(), r.begin(), r.end());
         for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
           iface_src[k - static_cast<size_t>(j)].insert(iface_src[k - static_cast<size_t>(j)].end(), r.begin(), r.end());
@@ -189,7 +199,7 @@ ProjectResult project(const ProjectInput& in) {
     }
     columns[k] = column;
   }
-  tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k]); });
+  tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k], touch[k]); });
   return res;
 }
 

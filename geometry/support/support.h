@@ -21,6 +21,7 @@ struct Contact {
   geo::Rings region;
   int interface_layers = 2;  // dense layers at the top of the column under it
   bool bed_only = false;     // only where no part lies below (support_on_bed_only)
+  bool touching = false;     // support_z_gap 0: it holds the layer right above it, touching it
 };
 
 // What a layer prints of support, as regions to fill (model units).

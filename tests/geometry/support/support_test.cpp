@@ -69,6 +69,33 @@ TEST_CASE("support: a column stands on the part's top with a gap, or not at all 
   }
 }
 
+TEST_CASE("support: nothing under the part of the layer right above, but under a contact that touches it") {
+  // A 0.6 mm speck of the part on layer 9, too small to be an overhang of its own, inside the
+  // cap's overhang: layer 8, where the cap's contact is placed, leaves it air (it was printed
+  // under it, the speck lying on the support); layer 7 does not.
+  auto layers = mushroom();
+  layers[9].islands.push_back(geo::Island{geo::Polygon{rect(1, 1, 1.6, 1.6), {}}});
+  ProjectInput in = test::project_input(layers);
+  in.contacts[8].push_back({cap_overhang(), 2, false});
+  ProjectResult r = project(in);
+  const geo::Rings speck{rect(1, 1, 1.6, 1.6)};
+  auto under = [&](const ProjectResult& p, size_t k) {
+    return area(toolpath::intersection(toolpath::union_of(p.layers[k].base, p.layers[k].interface), speck));
+  };
+  CHECK(under(r, 8) < 1e-9);
+  CHECK(under(r, 7) == Approx(0.36).epsilon(0.01));
+  CHECK(area(r.layers[8].interface) > 100);
+  // A contact with no gap (support_z_gap 0) holds the layer right above it: the cap on layer 10,
+  // touched from layer 9 (less layer 9's keep-out: the stem and the speck grown by the xy gap).
+  ProjectInput touching = test::project_input(layers);
+  touching.contacts[9].push_back({cap_overhang(), 2, false, true});
+  CHECK(area(project(touching).layers[9].interface) ==
+        Approx(area(toolpath::difference(cap_overhang(), touching.keep_out[9]))).epsilon(0.01));
+  ProjectInput gap = test::project_input(layers);
+  gap.contacts[9].push_back({cap_overhang(), 2, false, false});  // the same, not said to touch: the cap cuts it
+  CHECK(area(project(gap).layers[9].interface) < 1e-9);
+}
+
 TEST_CASE("support: off the bed it is cut, and said") {
   auto layers = mushroom();
   ProjectInput in = test::project_input(layers);
@@ -106,7 +133,7 @@ ProjectResult reference_project(const ProjectInput& in) {
   for (size_t k = 0; k < n; ++k) foot[k] = acc = toolpath::simplify(toolpath::union_of(acc, material[k]), 12500);
   ProjectResult res;
   res.layers.resize(n);
-  std::vector<geo::Rings> iface_src(n), columns(n);
+  std::vector<geo::Rings> iface_src(n), columns(n), touch(n);
   geo::Rings column;
   for (size_t k = n; k-- > 0;) {
     bool added = false;
@@ -118,6 +145,7 @@ ProjectResult reference_project(const ProjectInput& in) {
         r = kept;
       }
       if (r.empty()) continue;
+      if (c.touching) touch[k].insert(touch[k].end(), r.begin(), r.end());
       if (in.columns) column.insert(column.end(), r.begin(), r.end()), added = true;
       for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
         iface_src[k - size_t(j)].insert(iface_src[k - size_t(j)].end(), r.begin(), r.end());
@@ -151,6 +179,8 @@ ProjectResult reference_project(const ProjectInput& in) {
     geo::Rings printed = toolpath::difference(toolpath::simplify(col, 50000), toolpath::near(keep, box));
     for (int g = 1; g <= in.bottom_gap_layers && static_cast<int>(k) - g >= 0; ++g)
       printed = toolpath::difference(printed, toolpath::near(material[k - size_t(g)], box));
+    if (k + 1 < n)  // nor under the part right above, but where a contact touches it
+      printed = toolpath::difference(printed, toolpath::difference(toolpath::near(material[k + 1], box), touch[k]));
     geo::Rings iface;
     if (!iface_src[k].empty()) {
       const double m = 0.5 * in.merge_mm;
