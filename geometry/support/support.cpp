@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "geometry/toolpath/clip.h"
+#include "geometry/toolpath/edge_grid.h"
 #include "geometry/toolpath/relations.h"
 
 namespace tranche::support {
@@ -54,30 +55,6 @@ std::vector<Rings> footprints(std::span<const geo::Layer> layers) {
   return out;
 }
 
-// a − b, Clipper run only on the rings of `a` whose box meets the box of a ring of `b`: a ring
-// whose box meets none of them lies outside b and crosses none of its rings, so the difference
-// would give it back as it is. `a` must be a boolean's result (rings that do not cross, under
-// non-zero fill): a hole that meets nothing of b stays aside even when its outer is cut, and
-// still cancels that outer inside it (what b cuts lies outside the hole's box).
-Rings difference_near(const Rings& a, const Rings& b) {
-  if (a.empty() || b.empty()) return a;
-  std::vector<geo::BBox2> boxes;
-  boxes.reserve(b.size());
-  for (const geo::Ring& r : b) boxes.push_back(geo::bbox(r));
-  Rings touched, out;
-  for (const geo::Ring& r : a) {
-    const geo::BBox2 ra = geo::bbox(r);
-    const bool meets = std::any_of(boxes.begin(), boxes.end(), [&](const geo::BBox2& x) {
-      return !(x.max_x < ra.min_x || x.min_x > ra.max_x || x.max_y < ra.min_y || x.min_y > ra.max_y);
-    });
-    (meets ? touched : out).push_back(r);
-  }
-  if (touched.empty()) return a;
-  Rings cut = toolpath::difference(touched, b);
-  out.insert(out.end(), std::make_move_iterator(cut.begin()), std::make_move_iterator(cut.end()));
-  return out;
-}
-
 // Whether `box` lies inside `bed` when that is one convex ring (bed_region's rectangle or
 // circle): its four corners do. false when unsure (then the caller clips).
 bool within_convex(const Rings& bed, const geo::BBox2& box) {
@@ -100,6 +77,109 @@ bool within_convex(const Rings& bed, const geo::BBox2& box) {
 
 namespace {
 
+bool boxes_meet(const geo::BBox2& a, const geo::BBox2& b) {
+  return !(a.max_x < b.min_x || a.min_x > b.max_x || a.max_y < b.min_y || a.min_y > b.max_y);
+}
+
+// The rings of `b` as the local booleans ask about them: their boxes, their edges on a grid.
+class Reach {
+ public:
+  explicit Reach(const Rings& b) : b_(b), grid_(b) {
+    boxes_.reserve(b.size());
+    for (const geo::Ring& r : b) {
+      boxes_.push_back(geo::bbox(r));
+      for (const geo::Point& p : r) all_.add(p);
+    }
+  }
+  // Whether the area `r` encloses may meet the area a ring of b encloses. No only when it cannot:
+  // no edge of r touches an edge of b (exact), r's first vertex lies inside no ring of b, and no
+  // ring of b has its first vertex inside r (each ring on its own, so b may be any rings: their
+  // non-zero region lies within the areas they enclose). A ring touching b counts as meeting it.
+  bool may_meet(const geo::Ring& r) const {
+    if (r.empty()) return false;
+    const geo::BBox2 rb = geo::bbox(r);
+    if (!boxes_meet(rb, all_)) return false;
+    bool near = false;
+    for (size_t j = 0; j < b_.size(); ++j) {
+      if (!boxes_meet(rb, boxes_[j])) continue;
+      near = true;
+      // r inside ring j, or ring j inside r (when no edges meet, either holds of every vertex).
+      if (ClipperLib::PointInPolygon(r[0], b_[j]) != 0 || ClipperLib::PointInPolygon(b_[j][0], r) != 0) return true;
+    }
+    if (!near) return false;
+    if (grid_.box_clear(rb.min_x, rb.min_y, rb.max_x, rb.max_y)) return false;
+    for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+      const geo::Point &a = r[j], &c = r[i];
+      if (std::max(a.X, c.X) < all_.min_x || std::min(a.X, c.X) > all_.max_x || std::max(a.Y, c.Y) < all_.min_y ||
+          std::min(a.Y, c.Y) > all_.max_y)
+        continue;
+      if (grid_.crosses(a, c)) return true;
+    }
+    return false;
+  }
+
+ private:
+  const Rings& b_;
+  toolpath::EdgeGrid grid_;
+  std::vector<geo::BBox2> boxes_;
+  geo::BBox2 all_;
+};
+
+}  // namespace
+
+// Why the rings set aside are the boolean's: the rings of a region as a boolean leaves it are
+// nested, an outer round each hole and a hole round each island inside it, and whatever meets
+// a ring's area meets the area of each ring round it. So the rings handed to Clipper are, round
+// any point, the outermost ones of the rings that enclose it; those set aside enclose none of b.
+// A point of b then lies in no ring set aside, and Clipper decides it as the plain boolean would;
+// a point outside b has the winding of the rings handed over made 0 or 1 and that of the rings
+// set aside added: 1 inside the region, 0 outside, as before.
+namespace {
+
+// difference_local, and how many rings of `a` it set aside.
+Rings difference_local(const Rings& a, const Rings& b, size_t& aside) {
+  aside = a.size();
+  if (a.empty() || b.empty()) return a;
+  const Reach reach(b);
+  Rings touched, out;
+  for (const geo::Ring& r : a) (reach.may_meet(r) ? touched : out).push_back(r);
+  aside = out.size();
+  if (touched.empty()) return a;
+  Rings cut = toolpath::difference(touched, toolpath::near(b, toolpath::bbox(touched)));
+  out.insert(out.end(), std::make_move_iterator(cut.begin()), std::make_move_iterator(cut.end()));
+  return out;
+}
+
+}  // namespace
+
+Rings difference_local(const Rings& a, const Rings& b) {
+  size_t aside = 0;
+  return difference_local(a, b, aside);
+}
+
+Rings intersection_local(const Rings& a, const Rings& b) {
+  if (a.empty() || b.empty()) return {};
+  const Reach reach(b);
+  Rings touched;
+  for (const geo::Ring& r : a)
+    if (reach.may_meet(r)) touched.push_back(r);
+  if (touched.empty()) return {};
+  return toolpath::intersection(touched, toolpath::near(b, toolpath::bbox(touched)));
+}
+
+Rings union_local(const Rings& a, const Rings& b) {
+  if (b.empty()) return a;
+  if (a.empty()) return toolpath::union_of(b);
+  const Reach reach(b);
+  Rings touched = b, out;
+  for (const geo::Ring& r : a) (reach.may_meet(r) ? touched : out).push_back(r);
+  Rings u = toolpath::union_of(touched);
+  out.insert(out.end(), std::make_move_iterator(u.begin()), std::make_move_iterator(u.end()));
+  return out;
+}
+
+namespace {
+
 // What layer k prints of its column: the part and its gaps cut out, the interface under the
 // contacts, the rest sparse. Layers are independent here: run in parallel.
 SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& material, size_t k, const Rings& column,
@@ -117,10 +197,16 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
     Rings below = toolpath::near(material[k - static_cast<size_t>(g)], box);
     cut.insert(cut.end(), std::make_move_iterator(below.begin()), std::make_move_iterator(below.end()));
   }
-  Rings printed = toolpath::difference(toolpath::simplify(canonical(column), kPrintSimplify), cut);
+  const Rings simplified = toolpath::simplify(canonical(column), kPrintSimplify);
+  // Most of a large column lies away from the part: only its rings the cut reaches go through
+  // Clipper. The simplification may have made rings that cross (a neck narrower than twice its
+  // tolerance), which only the boolean cleans: then the whole goes through it.
+  size_t aside = 0;
+  Rings printed = difference_local(simplified, cut, aside);
+  if (aside > 0 && !toolpath::is_clean_region(printed)) printed = toolpath::difference(simplified, cut);
   // The contacts of a slope are slivers a reach apart: closed, they make one band of interface.
   Rings iface = iface_src.empty() ? Rings{}
-                                  : toolpath::intersection(printed, closing(toolpath::union_of(iface_src), 0.5 * in.merge_mm));
+                                  : intersection_local(printed, closing(toolpath::union_of(iface_src), 0.5 * in.merge_mm));
   // No opening here (it was two thirds of this function's time): the toolpaths erode each support
   // island by half a bead before filling it (plan::build_support), which removes every sliver
   // narrower than a bead just as an opening would; only specks are dropped now, so that they do
@@ -129,7 +215,7 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
   // The interface is cut from a column simplified for printing, its sources are not: grown by a
   // little more than that simplification, it leaves no base sliver along its edge.
   const Rings iface_cut = toolpath::offset_coarse(out.interface, 1.2 * geo::to_mm(kPrintSimplify));
-  out.base = drop_specks(toolpath::difference(printed, iface_cut), in.min_width_mm);
+  out.base = drop_specks(support::difference_local(printed, iface_cut), in.min_width_mm);
   out.area_mm2 = toolpath::area_mm2(out.base) + toolpath::area_mm2(out.interface);
   return out;
 }
@@ -149,10 +235,12 @@ ProjectResult project(const ProjectInput& in) {
   std::vector<Rings> iface_src(n), columns(n);
   Rings column;
   // Top-down, serial: each layer's column is the one above, plus its contacts, less the part. The
-  // column stays on the bed (only a contact that reaches past it is clipped to it), and the part
-  // is cut only from the column's rings near it: the same regions as clipping the whole column
-  // at each contact and cutting every ring, with fewer booleans (print_layer starts each ring at
-  // a fixed vertex, so the rings' order and first vertices, which differ, change nothing).
+  // column stays on the bed (only a contact that reaches past it is clipped to it), and the
+  // contacts and the part reach only the column's rings they meet (union_local,
+  // difference_local): the same regions as clipping the whole column at each contact and cutting
+  // every ring, with fewer booleans and far fewer vertices through Clipper (print_layer starts
+  // each ring at a fixed vertex, so the rings' order and first vertices, which differ, change
+  // nothing).
   for (size_t k = n; k-- > 0;) {
     Rings fresh;  // this layer's contacts
     if (k < in.contacts.size())
@@ -181,12 +269,7 @@ ProjectResult project(const ProjectInput& in) {
       res.off_bed_mm2 += toolpath::area_mm2(off);
       fresh = toolpath::intersection(all, in.bed);
     }
-    if (fresh.empty()) {
-      column = difference_near(column, part);
-    } else {
-      column.insert(column.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
-      column = difference_near(toolpath::union_of(column), part);
-    }
+    column = difference_local(union_local(column, fresh), part);
     columns[k] = column;
   }
   tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k]); });
