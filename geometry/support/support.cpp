@@ -167,6 +167,20 @@ Rings intersection_local(const Rings& a, const Rings& b) {
   return toolpath::intersection(touched, toolpath::near(b, toolpath::bbox(touched)));
 }
 
+Rings union_difference_local(const Rings& a, const Rings& add, const Rings& cut) {
+  if (add.empty()) return difference_local(a, cut);
+  if (cut.empty()) return union_local(a, add);
+  const Reach by_add(add), by_cut(cut);
+  Rings touched = add, out;
+  for (const geo::Ring& r : a) (by_add.may_meet(r) || by_cut.may_meet(r) ? touched : out).push_back(r);
+  // One boolean: the subject's non-zero region (the rings handed over and `add`) less `cut`'s
+  // (a union when no ring of `cut` is near: difference() hands back its subject as it is then).
+  const Rings near_cut = toolpath::near(cut, toolpath::bbox(touched));
+  Rings u = near_cut.empty() ? toolpath::union_of(touched) : toolpath::difference(touched, near_cut);
+  out.insert(out.end(), std::make_move_iterator(u.begin()), std::make_move_iterator(u.end()));
+  return out;
+}
+
 Rings union_local(const Rings& a, const Rings& b) {
   if (b.empty()) return a;
   if (a.empty()) return toolpath::union_of(b);
@@ -269,7 +283,7 @@ ProjectResult project(const ProjectInput& in) {
       res.off_bed_mm2 += toolpath::area_mm2(off);
       fresh = toolpath::intersection(all, in.bed);
     }
-    column = difference_local(union_local(column, fresh), part);
+    column = union_difference_local(column, fresh, part);
     columns[k] = column;
   }
   tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k]); });

@@ -60,6 +60,8 @@ ProjectResult project(const ProjectInput& in);
 geo::Rings difference_local(const geo::Rings& a, const geo::Rings& b);
 geo::Rings intersection_local(const geo::Rings& a, const geo::Rings& b);
 geo::Rings union_local(const geo::Rings& a, const geo::Rings& b);
+// (a ∪ add) − cut in one boolean, on the rings of `a` that `add` or `cut` may meet.
+geo::Rings union_difference_local(const geo::Rings& a, const geo::Rings& add, const geo::Rings& cut);
 
 // The bed as a region in model units: a rectangle, or a circle's polygon, given in G-code mm and
 // the model's shift into bed coordinates.

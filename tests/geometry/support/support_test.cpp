@@ -295,6 +295,11 @@ TEST_CASE("support: difference_local, intersection_local and union_local give th
     const geo::Rings diff = difference_local(a, b), want_diff = toolpath::difference(a, b);
     const geo::Rings meet = intersection_local(a, b), want_meet = toolpath::intersection(a, b);
     const geo::Rings uni = union_local(a, many), want_uni = toolpath::union_of(a, many);
+    // The columns' step: the contacts added and the part cut in one boolean.
+    const geo::Rings part = random_region(rnd, 2);
+    const geo::Rings step = union_difference_local(a, many, part), want_step = toolpath::difference(want_uni, part);
+    CHECK(xor_area(step, want_step) < kRounding);
+    CHECK(ring_area(step) == Approx(area(want_step)).epsilon(1e-7));
     CHECK(xor_area(diff, want_diff) < kRounding);
     CHECK(xor_area(meet, want_meet) < kRounding);
     CHECK(xor_area(uni, want_uni) < kRounding);
