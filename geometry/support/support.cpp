@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "geometry/toolpath/clip.h"
 #include "geometry/toolpath/edge_grid.h"
@@ -167,18 +168,49 @@ Rings intersection_local(const Rings& a, const Rings& b) {
   return toolpath::intersection(touched, toolpath::near(b, toolpath::bbox(touched)));
 }
 
-Rings union_difference_local(const Rings& a, const Rings& add, const Rings& cut) {
-  if (add.empty()) return difference_local(a, cut);
-  if (cut.empty()) return union_local(a, add);
-  const Reach by_add(add), by_cut(cut);
+namespace {
+
+// (a ∪ add) − cut, on the rings of `a` that `add` or `cut` may meet; `kept` gets the indices in
+// `a` of the rings set aside, which come first in the result, in that order.
+Rings column_step(const Rings& a, const Rings& add, const Rings& cut, std::vector<size_t>& kept) {
+  kept.clear();
+  std::optional<Reach> by_add, by_cut;
+  if (!add.empty()) by_add.emplace(add);
+  if (!cut.empty()) by_cut.emplace(cut);
   Rings touched = add, out;
-  for (const geo::Ring& r : a) (by_add.may_meet(r) || by_cut.may_meet(r) ? touched : out).push_back(r);
-  // One boolean: the subject's non-zero region (the rings handed over and `add`) less `cut`'s
-  // (a union when no ring of `cut` is near: difference() hands back its subject as it is then).
-  const Rings near_cut = toolpath::near(cut, toolpath::bbox(touched));
-  Rings u = near_cut.empty() ? toolpath::union_of(touched) : toolpath::difference(touched, near_cut);
+  for (size_t i = 0; i < a.size(); ++i) {
+    if ((by_add && by_add->may_meet(a[i])) || (by_cut && by_cut->may_meet(a[i]))) {
+      touched.push_back(a[i]);
+    } else {
+      out.push_back(a[i]);
+      kept.push_back(i);
+    }
+  }
+  if (touched.empty()) return out;
+  // One boolean: the subject's non-zero region (the rings handed over and `add`) less `cut`'s.
+  // With no ring of `cut` near, a union (difference() would hand back its subject as it is),
+  // unless there is nothing to add: the rings handed over are a region already.
+  const Rings near_cut = cut.empty() ? Rings{} : toolpath::near(cut, toolpath::bbox(touched));
+  Rings u = !near_cut.empty() ? toolpath::difference(touched, near_cut)
+            : add.empty()     ? std::move(touched)
+                              : toolpath::union_of(touched);
   out.insert(out.end(), std::make_move_iterator(u.begin()), std::make_move_iterator(u.end()));
   return out;
+}
+
+// A ring of the column as print_layer cuts it: started at its lowest vertex and simplified for
+// printing; empty when it collapses.
+geo::Ring print_ring(const geo::Ring& r) {
+  geo::Ring s = toolpath::simplify(canonical({r})[0], kPrintSimplify);
+  if (s.size() < 3) s.clear();
+  return s;
+}
+
+}  // namespace
+
+Rings union_difference_local(const Rings& a, const Rings& add, const Rings& cut) {
+  std::vector<size_t> kept;
+  return column_step(a, add, cut, kept);
 }
 
 Rings union_local(const Rings& a, const Rings& b) {
@@ -196,14 +228,14 @@ namespace {
 
 // What layer k prints of its column: the part and its gaps cut out, the interface under the
 // contacts, the rest sparse. Layers are independent here: run in parallel.
-SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& material, size_t k, const Rings& column,
-                         const Rings& iface_src) {
+// `simplified`: the column's rings as print_ring leaves them (carried from layer to layer with the
+// rings the column's step sets aside); `box`: the column's.
+SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& material, size_t k, const Rings& simplified,
+                         const geo::BBox2& box, const Rings& iface_src) {
   SupportLayer out;
-  if (column.empty()) return out;
-  const geo::BBox2 box = toolpath::bbox(column);
+  if (simplified.empty()) return out;
   const Rings& keep = k < in.keep_out.size() && !in.keep_out[k].empty() ? in.keep_out[k] : material[k];
-  // Simplified for printing only: done on the column itself, it would erode it layer after layer.
-  // (The gaps are cut after: simplifying there would cut chords into them.)
+  // The column comes simplified; the gaps are cut after (simplifying there would cut chords into them).
   // One boolean cuts the keep-out and the part below (the bottom gap): its clip rings' union
   // under non-zero fill.
   Rings cut = toolpath::near(keep, box);
@@ -211,7 +243,6 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
     Rings below = toolpath::near(material[k - static_cast<size_t>(g)], box);
     cut.insert(cut.end(), std::make_move_iterator(below.begin()), std::make_move_iterator(below.end()));
   }
-  const Rings simplified = toolpath::simplify(canonical(column), kPrintSimplify);
   // Most of a large column lies away from the part: only its rings the cut reaches go through
   // Clipper. The simplification may have made rings that cross (a neck narrower than twice its
   // tolerance), which only the boolean cleans: then the whole goes through it.
@@ -246,8 +277,11 @@ ProjectResult project(const ProjectInput& in) {
     return std::any_of(cs.begin(), cs.end(), [](const Contact& c) { return c.bed_only; });
   });
   const std::vector<Rings> foot = any_bed_only ? footprints(in.layers) : std::vector<Rings>{};
-  std::vector<Rings> iface_src(n), columns(n);
+  std::vector<Rings> iface_src(n), columns(n);  // columns: as printed (print_ring)
+  std::vector<geo::BBox2> boxes(n);
   Rings column;
+  std::vector<geo::Ring> print;  // print_ring of each ring of the column
+  std::vector<size_t> aside;     // the column's rings its step sets aside
   // Top-down, serial: each layer's column is the one above, plus its contacts, less the part. The
   // column stays on the bed (only a contact that reaches past it is clipped to it), and the
   // contacts and the part reach only the column's rings they meet (union_local,
@@ -270,7 +304,7 @@ ProjectResult project(const ProjectInput& in) {
         for (int j = 0; j < c.interface_layers && static_cast<int>(k) - j >= 0; ++j)
           iface_src[k - static_cast<size_t>(j)].insert(iface_src[k - static_cast<size_t>(j)].end(), r.begin(), r.end());
       }
-    if (!in.columns) column.clear(), fresh = iface_src[k];  // the interface alone, layer by layer
+    if (!in.columns) column.clear(), print.clear(), fresh = iface_src[k];  // the interface alone, layer by layer
     if (column.empty() && fresh.empty()) continue;
     geo::BBox2 box = toolpath::bbox(column);
     for (const geo::Ring& r : fresh)
@@ -283,10 +317,18 @@ ProjectResult project(const ProjectInput& in) {
       res.off_bed_mm2 += toolpath::area_mm2(off);
       fresh = toolpath::intersection(all, in.bed);
     }
-    column = union_difference_local(column, fresh, part);
-    columns[k] = column;
+    Rings next = column_step(column, fresh, part, aside);
+    // Simplified for printing only (done on the column itself, it would erode it layer after
+    // layer): each ring once, when a boolean makes it.
+    std::vector<geo::Ring> next_print(next.size());
+    for (size_t i = 0; i < next.size(); ++i) next_print[i] = i < aside.size() ? std::move(print[aside[i]]) : print_ring(next[i]);
+    column = std::move(next);
+    print = std::move(next_print);
+    boxes[k] = toolpath::bbox(column);
+    for (const geo::Ring& r : print)
+      if (!r.empty()) columns[k].push_back(r);
   }
-  tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], iface_src[k]); });
+  tbb::parallel_for(size_t{0}, n, [&](size_t k) { res.layers[k] = print_layer(in, material, k, columns[k], boxes[k], iface_src[k]); });
   return res;
 }
 
