@@ -51,6 +51,19 @@ struct ProjectResult {
 
 ProjectResult project(const ProjectInput& in);
 
+// a − b, a ∩ b and a ∪ b, Clipper run only on the rings of `a` whose area may meet the area of a
+// ring of `b` (boxes, then exact tests: edges touching, a first vertex inside the other ring); the
+// other rings are set aside as they are (left out of the intersection). The same region as the plain boolean, for `a` a region as a
+// boolean leaves it (rings that do not cross, winding 0 or 1 under non-zero fill) and `b` any
+// rings whose non-zero region is meant (the union: winding never below 0); the result is again
+// such a region, its rings in another order and ring starts. The columns' loop does most of its
+// layers on a few rings of a large column: only those the part or a contact reaches are cut.
+geo::Rings difference_local(const geo::Rings& a, const geo::Rings& b);
+geo::Rings intersection_local(const geo::Rings& a, const geo::Rings& b);
+geo::Rings union_local(const geo::Rings& a, const geo::Rings& b);
+// (a ∪ add) − cut in one boolean, on the rings of `a` that `add` or `cut` may meet.
+geo::Rings union_difference_local(const geo::Rings& a, const geo::Rings& add, const geo::Rings& cut);
+
 // The bed as a region in model units: a rectangle, or a circle's polygon, given in G-code mm and
 // the model's shift into bed coordinates.
 geo::Rings bed_region(bool circular, double min_x, double min_y, double max_x, double max_y, const geo::Point& shift);
