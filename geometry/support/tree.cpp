@@ -26,6 +26,12 @@ struct Disc {
   double x, y, r;
 };
 
+// A bar joining two branches of one layer into one island (see TreeSpec::link_mm).
+struct Bar {
+  int a, b;  // nodes
+  double ax, ay, bx, by, r;
+};
+
 // Whether p lies inside `rings` (non-zero: outer rings count +1, holes -1).
 bool inside(const Rings& rings, const geo::Point& p) {
   int w = 0;
@@ -60,6 +66,22 @@ geo::Ring disc(double x, double y, double r) {
   return ring;
 }
 
+// The ring round the segment a-b grown by r (two half discs and their tangents), counter-clockwise.
+geo::Ring capsule(double ax, double ay, double bx, double by, double r) {
+  constexpr int kHalf = 12;
+  const double t = std::atan2(by - ay, bx - ax);
+  geo::Ring ring;
+  for (int i = 0; i <= kHalf; ++i) {
+    const double a = t - std::numbers::pi / 2 + std::numbers::pi * i / kHalf;
+    ring.push_back(geo::to_point(bx + r * std::cos(a), by + r * std::sin(a)));
+  }
+  for (int i = 0; i <= kHalf; ++i) {
+    const double a = t + std::numbers::pi / 2 + std::numbers::pi * i / kHalf;
+    ring.push_back(geo::to_point(ax + r * std::cos(a), ay + r * std::sin(a)));
+  }
+  return ring;
+}
+
 // Tips on a grid over `region`, at least one for a region the grid misses.
 std::vector<std::pair<double, double>> tips(const Rings& region, double spacing) {
   std::vector<std::pair<double, double>> out;
@@ -81,7 +103,7 @@ std::vector<std::pair<double, double>> tips(const Rings& region, double spacing)
 // The branches and how they were made: every disc by layer, who merged into whom.
 class Forest {
  public:
-  explicit Forest(size_t layers) : discs_(layers) {}
+  explicit Forest(size_t layers) : discs_(layers), bars_(layers) {}
 
   int node() {
     parents_.emplace_back();
@@ -94,6 +116,9 @@ class Forest {
     return c;
   }
   void add(size_t layer, const Node& n) { discs_[layer].push_back({n.id, n.x, n.y, n.r}); }
+  void link(size_t layer, const Node& a, const Node& b, double r) {
+    bars_[layer].push_back({a.id, b.id, a.x, a.y, b.x, b.y, r});
+  }
   // Drops node `id` and every branch that fed it (the tree above cannot stand without it).
   void kill(int id) {
     std::vector<int> stack{id};
@@ -116,13 +141,21 @@ class Forest {
       ids.push_back(n);
       for (int p : parents_[static_cast<size_t>(n)]) stack.push_back(p);
     }
-    for (size_t k = from; k < discs_.size() && k < from + static_cast<size_t>(count); ++k)
-      std::erase_if(discs_[k], [&](const Disc& d) { return std::find(ids.begin(), ids.end(), d.node) != ids.end(); });
+    const auto gone = [&](int node) { return std::find(ids.begin(), ids.end(), node) != ids.end(); };
+    for (size_t k = from; k < discs_.size() && k < from + static_cast<size_t>(count); ++k) {
+      std::erase_if(discs_[k], [&](const Disc& d) { return gone(d.node); });
+      std::erase_if(bars_[k], [&](const Bar& b) { return gone(b.a) || gone(b.b); });
+    }
   }
-  Rings layer(size_t k) const {
+  // The living branches' discs on layer k, and (`bars`, not united) their bars.
+  Rings layer(size_t k, Rings& bars) const {
     Rings out;
     for (const Disc& d : discs_[k])
       if (!dead_[static_cast<size_t>(d.node)]) out.push_back(disc(d.x, d.y, d.r));
+    bars.clear();
+    for (const Bar& b : bars_[k])
+      if (!dead_[static_cast<size_t>(b.a)] && !dead_[static_cast<size_t>(b.b)])
+        bars.push_back(capsule(b.ax, b.ay, b.bx, b.by, b.r));
     return toolpath::union_of(out);
   }
 
@@ -130,6 +163,7 @@ class Forest {
   std::vector<std::vector<int>> parents_;
   std::vector<char> dead_;
   std::vector<std::vector<Disc>> discs_;
+  std::vector<std::vector<Bar>> bars_;
 };
 
 class Grower {
@@ -149,6 +183,7 @@ class Grower {
             ++res.tips;
           }
       step(k, h * std::tan(spec_.branch_angle_deg * std::numbers::pi / 180));
+      link(k);
       for (Node& nd : nodes_) {
         forest_.add(k, nd);
         nd.r = std::min(spec_.max_radius_mm, nd.r + spec_.widen_per_mm * h);
@@ -157,8 +192,18 @@ class Grower {
     res.trunks_on_bed = static_cast<int>(nodes_.size());
     res.blocked_mm2 = blocked_mm2_;
     res.branches.resize(n);
+    const int gap = gap_layers();
     for (size_t k = 0; k < n; ++k) {
-      Rings b = forest_.layer(k);
+      Rings bars;
+      Rings b = forest_.layer(k, bars);
+      if (!bars.empty()) {  // a bar spans air: not over the part's top within the z gap
+        Rings below;
+        for (size_t j = k; j-- > 0 && j + static_cast<size_t>(gap) >= k;) {
+          const Rings& ob = j < in_.keep_out.size() && !in_.keep_out[j].empty() ? in_.keep_out[j] : part(j);
+          below.insert(below.end(), ob.begin(), ob.end());
+        }
+        b = toolpath::union_of(b, below.empty() ? bars : toolpath::difference(bars, below));
+      }
       if (b.empty()) continue;
       b = toolpath::difference(b, k < in_.keep_out.size() && !in_.keep_out[k].empty() ? in_.keep_out[k]
                                                                                         : toolpath::material(in_.layers[k]));
@@ -169,6 +214,10 @@ class Grower {
   }
 
  private:
+  // Layers of air between the part's top and a branch or bar above it: the spec's, or the
+  // support_z_gap's (ProjectInput::bottom_gap_layers) when more.
+  int gap_layers() const { return std::max(spec_.bottom_gap_layers, in_.bottom_gap_layers); }
+
   // The part grown by its gap and a branch of radius r, on the layer being grown.
   const Rings& obstacle(size_t k, double r) {
     const int bucket = static_cast<int>(std::ceil(r / 0.25));
@@ -180,6 +229,34 @@ class Grower {
   const Rings& part(size_t k) {
     if (part_layer_ != k) part_ = toolpath::material(in_.layers[k]), part_layer_ = k;
     return part_;
+  }
+
+  // Bars joining the layer's branches that stand within link_mm of each other: the edges of their
+  // minimum spanning tree (Prim's) no longer than that, so each group of close branches prints as
+  // one island, with the fewest bars.
+  void link(size_t k) {
+    const size_t n = nodes_.size();
+    if (spec_.link_mm <= 0 || n < 2) return;
+    std::vector<double> best(n, 1e300);
+    std::vector<size_t> from(n, 0);
+    std::vector<char> in(n, 0);
+    size_t cur = 0;
+    in[0] = 1;
+    for (size_t added = 1; added < n; ++added) {
+      for (size_t j = 0; j < n; ++j) {
+        if (in[j]) continue;
+        const double d = std::hypot(nodes_[j].x - nodes_[cur].x, nodes_[j].y - nodes_[cur].y);
+        if (d < best[j]) best[j] = d, from[j] = cur;
+      }
+      size_t next = n;
+      for (size_t j = 0; j < n; ++j)
+        if (!in[j] && (next == n || best[j] < best[next])) next = j;
+      in[next] = 1;
+      cur = next;
+      const Node &a = nodes_[next], &b = nodes_[from[next]];
+      if (best[next] <= spec_.link_mm && best[next] > std::max(a.r, b.r))
+        forest_.link(k, a, b, spec_.link_radius_mm);
+    }
   }
 
   // One layer down: lean toward the nearest branch, merge, get out of the part or end on it.
@@ -222,7 +299,7 @@ class Grower {
           forest_.kill(a.id);
           blocked_mm2_ += std::numbers::pi * a.r * a.r;
         } else {
-          forest_.drop(a.id, k + 1, spec_.bottom_gap_layers);
+          forest_.drop(a.id, k + 1, gap_layers());  // the z gap over the part's top
         }
       } else {
         kept.push_back(a);  // squeezed beside a wall: goes on, cut by the gap when printed
