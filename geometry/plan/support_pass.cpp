@@ -191,7 +191,8 @@ Contacts place_contacts(setup::PrintSetup& S, std::vector<LayerSupport>& decided
       // Tree: the interface under the overhang, the tips right below it.
       const int tips_at = k - d.interface_layers;
       c.tree.bottom_gap_layers = std::max(c.tree.bottom_gap_layers, gap);
-      if (tips_at >= 0) c.tree.contacts[size_t(tips_at)].push_back({d.overhang, 0, d.bed_only});
+      if (tips_at >= 0)  // tips right under the overhang (no gap, no interface) touch it
+        c.tree.contacts[size_t(tips_at)].push_back({d.overhang, 0, d.bed_only, gap == 0 && d.interface_layers == 0});
       c.tree_iface.contacts[size_t(k)].push_back({std::move(d.overhang), d.interface_layers, d.bed_only, gap == 0});
       c.any_tree = true;
     }

@@ -193,6 +193,12 @@ class Grower {
     res.blocked_mm2 = blocked_mm2_;
     res.branches.resize(n);
     const int gap = gap_layers();
+    // What a tip placed on a layer touches on the layer above (a contact with no gap and no
+    // interface): the part there may lie on it; elsewhere branches leave the part above air.
+    std::vector<Rings> touch(n);
+    for (size_t k = 0; k < n && k < in_.contacts.size(); ++k)
+      for (const Contact& c : in_.contacts[k])
+        if (c.touching) touch[k].insert(touch[k].end(), c.region.begin(), c.region.end());
     for (size_t k = 0; k < n; ++k) {
       Rings bars;
       Rings b = forest_.layer(k, bars);
@@ -205,8 +211,14 @@ class Grower {
         b = toolpath::union_of(b, below.empty() ? bars : toolpath::difference(bars, below));
       }
       if (b.empty()) continue;
-      b = toolpath::difference(b, k < in_.keep_out.size() && !in_.keep_out[k].empty() ? in_.keep_out[k]
-                                                                                        : toolpath::material(in_.layers[k]));
+      Rings cut = k < in_.keep_out.size() && !in_.keep_out[k].empty() ? in_.keep_out[k] : toolpath::material(in_.layers[k]);
+      if (k + 1 < n) {  // the top gap: nothing right under the part of the layer above (a speck of it
+                        // a branch passes under, the edge of a slope's next layer)
+        Rings above = toolpath::near(toolpath::material(in_.layers[k + 1]), toolpath::bbox(b));
+        if (!touch[k].empty() && !above.empty()) above = toolpath::difference(above, touch[k]);
+        cut.insert(cut.end(), std::make_move_iterator(above.begin()), std::make_move_iterator(above.end()));
+      }
+      b = toolpath::difference(b, cut);
       if (!in_.bed.empty()) b = toolpath::intersection(b, in_.bed);
       res.branches[k] = std::move(b);
     }

@@ -144,3 +144,20 @@ TEST_CASE("tree: a branch or bar leaves support_z_gap's layers of air over the p
     }
   }
 }
+
+TEST_CASE("tree: no branch right under the part of the layer above, but where a tip touches it") {
+  // Tips on layer 39, right under the cap of layer 40: with no gap and no interface they touch it
+  // (support_z_gap 0); said to keep a gap, nothing of them lies under the cap (what remains is
+  // the tips' discs past the cap's edge).
+  auto layers = mushroom();
+  const geo::Rings cap = toolpath::difference({rect(0, 0, 24, 24)}, toolpath::offset({rect(10, 10, 14, 14)}, 0.2));
+  const geo::Rings above = toolpath::material(layers[40]);
+  ProjectInput touching = test::project_input(layers);
+  touching.contacts[39].push_back({cap, 0, false, true});
+  CHECK(area(toolpath::intersection(grow_trees(touching, TreeSpec{}).branches[39], above)) > 3);
+  ProjectInput gapped = test::project_input(layers);
+  gapped.contacts[39].push_back({cap, 0, false, false});
+  const TreeResult g = grow_trees(gapped, TreeSpec{});
+  CHECK(area(toolpath::intersection(g.branches[39], above)) < 1e-6);
+  CHECK(area(g.branches[38]) > 3);  // the branches below go on
+}
