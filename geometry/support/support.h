@@ -53,11 +53,12 @@ ProjectResult project(const ProjectInput& in);
 
 // a − b, a ∩ b and a ∪ b, Clipper run only on the rings of `a` whose area may meet the area of a
 // ring of `b` (boxes, then exact tests: edges touching, a first vertex inside the other ring); the
-// other rings are set aside as they are (left out of the intersection). The same region as the plain boolean, for `a` a region as a
-// boolean leaves it (rings that do not cross, winding 0 or 1 under non-zero fill) and `b` any
-// rings whose non-zero region is meant (the union: winding never below 0); the result is again
-// such a region, its rings in another order and ring starts. The columns' loop does most of its
-// layers on a few rings of a large column: only those the part or a contact reaches are cut.
+// other rings are set aside as they are (left out of the intersection). The same region as the
+// plain boolean, for `a` a region as a boolean leaves it (rings that do not cross, winding 0 or 1
+// under non-zero fill) and `b` any rings whose non-zero region is meant (the union: winding never
+// below 0); the result is again such a region, its rings in another order and ring starts. The
+// columns' loop does most of its layers on a few rings of a large column: only those the part or
+// a contact reaches are cut.
 geo::Rings difference_local(const geo::Rings& a, const geo::Rings& b);
 geo::Rings intersection_local(const geo::Rings& a, const geo::Rings& b);
 geo::Rings union_local(const geo::Rings& a, const geo::Rings& b);
