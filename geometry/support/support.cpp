@@ -249,8 +249,7 @@ SupportLayer print_layer(const ProjectInput& in, const std::vector<Rings>& mater
   // (a contact reaches a little inside its island). Only a contact that asks to touch (z gap 0)
   // lies under the part above it.
   if (k + 1 < material.size()) {
-    Rings above = toolpath::near(material[k + 1], box);
-    if (!touch.empty() && !above.empty()) above = toolpath::difference(above, touch);
+    Rings above = part_above(material[k + 1], touch, box);
     cut.insert(cut.end(), std::make_move_iterator(above.begin()), std::make_move_iterator(above.end()));
   }
   // Most of a large column lies away from the part: only its rings the cut reaches go through
@@ -343,6 +342,11 @@ ProjectResult project(const ProjectInput& in) {
     res.layers[k] = print_layer(in, material, k, columns[k], boxes[k], iface_src[k], touch[k]);
   });
   return res;
+}
+
+Rings part_above(const Rings& above, const Rings& touch, const geo::BBox2& box) {
+  Rings near = toolpath::near(above, box);
+  return touch.empty() || near.empty() ? near : toolpath::difference(near, touch);
 }
 
 Rings bed_region(bool circular, double min_x, double min_y, double max_x, double max_y, const geo::Point& shift) {

@@ -65,6 +65,10 @@ geo::Rings union_local(const geo::Rings& a, const geo::Rings& b);
 // (a ∪ add) − cut in one boolean, on the rings of `a` that `add` or `cut` may meet.
 geo::Rings union_difference_local(const geo::Rings& a, const geo::Rings& add, const geo::Rings& cut);
 
+// The top gap: what support printed on a layer leaves air under, the part of the layer above
+// (`above`) near `box`, but where a contact placed on that layer touches it (`touch`, support_z_gap 0).
+geo::Rings part_above(const geo::Rings& above, const geo::Rings& touch, const geo::BBox2& box);
+
 // The bed as a region in model units: a rectangle, or a circle's polygon, given in G-code mm and
 // the model's shift into bed coordinates.
 geo::Rings bed_region(bool circular, double min_x, double min_y, double max_x, double max_y, const geo::Point& shift);

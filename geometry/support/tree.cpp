@@ -214,8 +214,7 @@ class Grower {
       Rings cut = k < in_.keep_out.size() && !in_.keep_out[k].empty() ? in_.keep_out[k] : toolpath::material(in_.layers[k]);
       if (k + 1 < n) {  // the top gap: nothing right under the part of the layer above (a speck of it
                         // a branch passes under, the edge of a slope's next layer)
-        Rings above = toolpath::near(toolpath::material(in_.layers[k + 1]), toolpath::bbox(b));
-        if (!touch[k].empty() && !above.empty()) above = toolpath::difference(above, touch[k]);
+        Rings above = part_above(toolpath::material(in_.layers[k + 1]), touch[k], toolpath::bbox(b));
         cut.insert(cut.end(), std::make_move_iterator(above.begin()), std::make_move_iterator(above.end()));
       }
       b = toolpath::difference(b, cut);
